@@ -1,0 +1,124 @@
+#pragma once
+// A sensor file becomes a Chain: one stage per section, evaluated in the order
+//   source -> target -> atmosphere -> optics -> detector -> criteria.*
+// run() evaluates it forward, then performs the [[solve]] entries (Boost.Math toms748 on the named criterion's
+// margin), then checks the [expected] references.
+#include "radchain/config.hpp"
+#include "radchain/light.hpp"
+#include "radchain/plugin.hpp"
+#include "radchain/results.hpp"
+#include "radchain/schema.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace radchain {
+
+struct StageSlot {
+  std::string section;  // "optics", "criteria.detection"
+  const PluginInfo* info = nullptr;
+  std::unique_ptr<Params> params;
+  std::unique_ptr<Stage> stage;
+};
+
+// [[solve]] unknown = "optics.aperture"  criterion = "energy"  bracket = ["1 cm", "2 m"]
+struct SolveSpec {
+  std::string unknown;    // "<section>.<parameter>", a quantity or number parameter
+  std::string criterion;  // the name under [criteria.<name>]; its result "criteria.<name>.margin" is driven to 0
+  double lo = 0, hi = 0;  // bracket in SI; from the file, else the parameter's range
+  SourceLocation where;
+};
+
+// [expected] "optics.focal_length" = { value = "832 mm", tolerance = "1 mm", source = "Kolobrodov 1996, p. 4" }
+struct Expectation {
+  std::string result;
+  double value_si = 0;
+  double tolerance_si = 0;      // absolute
+  double rel_tolerance = 0;     // relative (either or both)
+  std::string as_written;       // "832 mm"
+  std::string display_unit;     // the unit it was written in ("" = the result's display unit)
+  std::string source;
+  SourceLocation where;
+};
+
+struct SolveOutcome {
+  SolveSpec spec;
+  double value_si = 0;
+  int iterations = 0;
+  bool converged = false;
+  std::string message;  // why not, when not
+};
+
+struct ExpectationOutcome {
+  Expectation spec;
+  double computed_si = 0;
+  bool found = false;
+  bool passed = false;
+};
+
+struct Report {
+  std::string sensor_file;
+  std::string sensor_name;
+  std::vector<ResultInfo> results;        // in declaration order
+  std::vector<double> values;             // SI, NaN when not evaluated
+  std::vector<SolveOutcome> solves;
+  std::vector<ExpectationOutcome> expectations;
+  bool all_passed() const;                // every solve converged and every expectation passed
+  std::optional<double> value(const std::string& name) const;
+};
+
+class Chain {
+ public:
+  Chain() = default;
+  Chain(Chain&&) = default;
+  Chain& operator=(Chain&&) = default;
+
+  std::string sensor_file, sensor_name, description;
+  std::vector<StageSlot> stages;
+  std::vector<SolveSpec> solves;
+  std::vector<Expectation> expected;
+
+  // The spectral phase, if a spectral parameter changed since it last ran; then the scalar phase.
+  void evaluate();
+  // evaluate() + solves + expectations.
+  Report run();
+
+  // The stable address of a scalar parameter, "<section>.<key>" (for solvers and sweeps).
+  double* parameter(const std::string& qualified_key);
+  StageSlot& slot(const std::string& section);
+  // Sets a scalar parameter (SI) and marks the spectral phase dirty when the parameter affects the spectrum.
+  void set(const std::string& qualified_key, double value_si);
+  // Marks the spectral phase dirty (after a spectral parameter was replaced).
+  void invalidate_spectra() { spectral_dirty_ = true; }
+  // The results that report each solve's unknown, in the order of `solves` (set by load_sensor).
+  void set_solve_result_ids(std::vector<ResultId> ids) { solve_result_ids_ = std::move(ids); }
+
+  Results& results() { return results_; }
+  const Results& results() const { return results_; }
+  double result(const std::string& name) const;  // throws std::out_of_range when unknown
+
+ private:
+  void prepare_all();
+  void evaluate_all();
+  Context context_for(StageSlot& slot);
+  SolveOutcome solve(const SolveSpec& spec);
+
+  Results results_;
+  Light light_;
+  bool spectral_dirty_ = true;
+  std::vector<ResultId> solve_result_ids_;
+};
+
+// One `--set key=value` override: "optics.aperture=20 cm", "target.magnitude=15".
+struct Override {
+  std::string key;
+  std::string value;
+};
+
+// Parses, validates and builds. Throws InputError for any bad input (file, line, key, what is accepted).
+Chain load_sensor(const std::string& path, const std::vector<Override>& overrides = {});
+
+}  // namespace radchain

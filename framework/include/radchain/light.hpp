@@ -1,0 +1,36 @@
+#pragma once
+// What flows from stage to stage: radiation as a spectral shape (set in the spectral phase) times a scalar
+// (set in the scalar phase). The split is what makes solves and sweeps cheap: a change of aperture,
+// magnitude or integration time touches only `scale`.
+#include "radchain/spectrum.hpp"
+
+#include <string>
+
+namespace radchain {
+
+enum class RadiationForm {
+  none,
+  pupil_irradiance,   // point object: spectral irradiance at the entrance pupil, W m^-2 m^-1
+  scene_radiance,     // extended scene: spectral radiance at the entrance pupil, W m^-2 sr^-1 m^-1
+  focal_power,        // point object after the optics: spectral power in the image, W m^-1
+  focal_irradiance,   // extended scene after the optics: spectral irradiance on the focal plane, W m^-2 m^-1
+};
+std::string to_string(RadiationForm form);
+
+struct Radiation {
+  RadiationForm form = RadiationForm::none;
+  Spectrum spectrum;  // per unit scale, in the form's unit
+  double scale = 1.0;
+};
+
+struct Light {
+  // The source's spectral irradiance at the target (W m^-2 m^-1), per unit `illumination_scale`.
+  Spectrum illumination;
+  double illumination_scale = 1.0;
+  // The object of interest (point target, or the ground contrast ΔM of an extended scene).
+  Radiation signal;
+  // Light that is present whether or not the object is (sky, ground background); form none when absent.
+  Radiation background;
+};
+
+}  // namespace radchain

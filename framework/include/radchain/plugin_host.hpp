@@ -1,0 +1,43 @@
+#pragma once
+// Finds and loads plugins. Search order: --plugin-path, RADCHAIN_PLUGIN_PATH, next to the executable
+// (build tree: <exe dir>/plugins/<kind>/), the install prefix. A plugin is <dir>/<kind>/<name>.so; the first
+// one found under a name wins and the host says so on stderr. Libraries stay loaded for the whole process.
+#include "radchain/plugin.hpp"
+
+#include <string>
+#include <vector>
+
+namespace radchain {
+
+struct PluginFile {
+  std::string name;  // file stem
+  Kind kind;
+  std::string path;
+};
+
+class PluginHost {
+ public:
+  // The process-wide host (never destroyed, so no library is unloaded while objects from it live).
+  static PluginHost& instance();
+
+  // Replaces the search path: explicit (--plugin-path, colon-separated) first, then the defaults.
+  void configure(const std::vector<std::string>& explicit_dirs);
+  const std::vector<std::string>& search_path() const { return search_path_; }
+
+  // All plugin files found, first-wins per name, in (kind, name) order.
+  std::vector<PluginFile> discover() const;
+  // Loads (once) and returns the plugin of this kind and name. Throws InputError listing the available
+  // names of that kind when there is none, and when the library is broken (wrong ABI, no entry, not a
+  // shared library, kind or name mismatch).
+  const PluginInfo& load(Kind kind, const std::string& name);
+  // Loads a library file directly (tests, `radchain describe ./x.so`).
+  const PluginInfo& load_file(const std::string& path);
+
+ private:
+  PluginHost();
+  struct Impl;
+  Impl* impl_;
+  std::vector<std::string> search_path_;
+};
+
+}  // namespace radchain

@@ -1,0 +1,128 @@
+#pragma once
+// A plugin's parameter schema: key, kind, SI unit, default or required, range or allowed values, one-line
+// doc. It drives validation, the error texts, `radchain describe` and the generated reference page.
+#include "radchain/config.hpp"
+#include "radchain/spectrum.hpp"
+
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace radchain {
+
+enum class ParamType {
+  quantity,  // dimensional number with a unit: "15 cm"; a bare number is refused
+  number,    // dimensionless real: 0.56
+  integer,   // dimensionless integer: 12
+  text,      // free string
+  choice,    // one of `choices`
+  flag,      // true / false
+  spectrum,  // a CSV spectrum file (see spectrum_csv.hpp), loaded and unit-checked during validation
+};
+
+struct ParamSpec {
+  std::string key;
+  ParamType type = ParamType::number;
+  std::string si_unit;  // quantity: SI unit of the stored value ("m"); spectrum: unit of its values ("1")
+  std::string example;  // a valid value as written in a sensor file: "15 cm"
+  std::optional<std::string> default_value;  // written like `example`; none + !required = optional
+  bool required = false;
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false, max_exclusive = false;
+  std::vector<std::string> choices;
+  std::string doc;
+  bool spectral = false;  // changing it re-runs the chain's spectral phase
+
+  // Fluent setters, so a schema reads like a table.
+  ParamSpec&& fallback(std::string value) && { default_value = std::move(value); return std::move(*this); }
+  ParamSpec&& needed() && { required = true; return std::move(*this); }
+  ParamSpec&& at_least(double v) && { min = v; min_exclusive = false; return std::move(*this); }
+  ParamSpec&& above(double v) && { min = v; min_exclusive = true; return std::move(*this); }
+  ParamSpec&& at_most(double v) && { max = v; max_exclusive = false; return std::move(*this); }
+  ParamSpec&& below(double v) && { max = v; max_exclusive = true; return std::move(*this); }
+  ParamSpec&& described(std::string text) && { doc = std::move(text); return std::move(*this); }
+  ParamSpec&& affects_spectrum() && { spectral = true; return std::move(*this); }
+
+  std::string range_text() const;     // "> 0 m", "in [0, 1]", "one of e490, wehrli"
+  std::string expected_text() const;  // what the error line says is expected
+  bool in_range(double si_value) const;
+};
+
+ParamSpec quantity(std::string key, std::string si_unit, std::string example);
+ParamSpec number(std::string key, std::string example);
+ParamSpec integer(std::string key, std::string example);
+ParamSpec text(std::string key, std::string example);
+ParamSpec choice(std::string key, std::vector<std::string> choices);
+ParamSpec flag(std::string key);
+ParamSpec spectrum_file(std::string key, std::string si_unit, std::string example);
+
+using Schema = std::vector<ParamSpec>;
+
+// Validated values of one section, in SI. Scalars live at stable addresses (handle()), so a solver or a
+// sweep can change one value and re-evaluate without rebuilding the plugin.
+class Params {
+ public:
+  struct Entry {
+    const ParamSpec* spec = nullptr;
+    bool given = false;         // written in the file (or --set), not defaulted
+    bool present = false;       // given or defaulted
+    double number = 0.0;        // quantity / number / integer, SI
+    std::string text;           // text / choice / spectrum path as written
+    bool flag = false;
+    std::shared_ptr<const Spectrum> spectrum;
+    SourceLocation where;
+    std::string as_written;     // the TOML text, for messages
+  };
+
+  Params(std::string section, std::string plugin, const Schema* schema);
+
+  const std::string& section() const { return section_; }
+  const std::string& plugin() const { return plugin_; }
+  std::string context() const;  // `optics (plugin "telescope")`
+
+  bool has(const std::string& key) const;    // given or defaulted
+  bool given(const std::string& key) const;  // written in the file
+  double get(const std::string& key) const;  // quantity / number / integer (SI)
+  std::optional<double> maybe(const std::string& key) const;
+  const double* handle(const std::string& key) const;
+  std::int64_t integer(const std::string& key) const;
+  const std::string& text(const std::string& key) const;
+  bool flag(const std::string& key) const;
+  const Spectrum& spectrum(const std::string& key) const;
+  const Entry& entry(const std::string& key) const;
+  Entry& entry(const std::string& key);
+  const Schema& schema() const { return *schema_; }
+
+  // A plugin's own consistency rule failed for `key` (e.g. element size larger than pitch).
+  [[noreturn]] void reject(const std::string& key, const std::string& problem) const;
+
+  std::vector<Entry>& entries() { return entries_; }
+  const std::vector<Entry>& entries() const { return entries_; }
+
+ private:
+  std::string section_, plugin_;
+  const Schema* schema_;
+  std::vector<Entry> entries_;  // one per schema entry, never resized after construction
+};
+
+// Everything validation needs besides the section table.
+struct ValidationContext {
+  std::string sensor_file;            // for messages and relative spectrum paths
+  std::string section;                // "optics", "criteria.detection"
+  std::string plugin;                 // "telescope"
+};
+
+// Validates one section table against a schema (the `plugin` key itself is skipped). Throws InputError.
+Params validate_section(const Schema& schema, const ConfigValue& table, const ValidationContext& context);
+
+// Sets one entry from a TOML value (used by validation and by --set / sweeps). Throws InputError.
+void assign_param(Params& params, Params::Entry& entry, const ConfigValue& value, const ValidationContext& context);
+
+// Finds a data file: as given (absolute, or relative to the sensor file's folder), then in
+// RADCHAIN_DATA_PATH (colon-separated), the source tree's spectra/ and the installed share/radchain/spectra.
+std::optional<std::string> resolve_data_file(const std::string& name, const std::string& sensor_file);
+
+}  // namespace radchain

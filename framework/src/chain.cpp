@@ -1,0 +1,166 @@
+#include "radchain/chain.hpp"
+
+#include "radchain/error.hpp"
+#include "radchain/units.hpp"
+
+#include <boost/math/tools/roots.hpp>
+
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+namespace radchain {
+
+bool Report::all_passed() const {
+  for (const auto& s : solves)
+    if (!s.converged) return false;
+  for (const auto& e : expectations)
+    if (!e.passed) return false;
+  return true;
+}
+
+std::optional<double> Report::value(const std::string& name) const {
+  for (std::size_t i = 0; i < results.size(); ++i)
+    if (results[i].name == name) return values[i];
+  return std::nullopt;
+}
+
+Context Chain::context_for(StageSlot& slot) {
+  return Context{results_, light_, slot.section, slot.info->name};
+}
+
+void Chain::prepare_all() {
+  light_ = Light{};
+  for (auto& slot : stages) {
+    Context context = context_for(slot);
+    slot.stage->prepare(context);
+  }
+  spectral_dirty_ = false;
+}
+
+void Chain::evaluate_all() {
+  light_.illumination_scale = 1.0;
+  light_.signal.scale = 1.0;
+  light_.background.scale = 1.0;
+  for (auto& slot : stages) {
+    Context context = context_for(slot);
+    slot.stage->evaluate(context);
+  }
+  for (std::size_t i = 0; i < solves.size() && i < solve_result_ids_.size(); ++i)
+    results_.set(solve_result_ids_[i], *parameter(solves[i].unknown));
+}
+
+void Chain::evaluate() {
+  if (spectral_dirty_) prepare_all();
+  evaluate_all();
+}
+
+StageSlot& Chain::slot(const std::string& section) {
+  for (auto& s : stages)
+    if (s.section == section) return s;
+  throw std::out_of_range("no section \"" + section + "\"");
+}
+
+double* Chain::parameter(const std::string& qualified_key) {
+  const auto dot = qualified_key.rfind('.');
+  if (dot == std::string::npos) throw std::out_of_range("\"" + qualified_key + "\" is not <section>.<key>");
+  StageSlot& s = slot(qualified_key.substr(0, dot));
+  Params::Entry& entry = s.params->entry(qualified_key.substr(dot + 1));
+  const ParamType type = entry.spec->type;
+  if (type != ParamType::quantity && type != ParamType::number && type != ParamType::integer)
+    throw std::out_of_range("\"" + qualified_key + "\" is not a numeric parameter");
+  entry.present = true;
+  return &entry.number;
+}
+
+void Chain::set(const std::string& qualified_key, double value_si) {
+  *parameter(qualified_key) = value_si;
+  const auto dot = qualified_key.rfind('.');
+  if (slot(qualified_key.substr(0, dot)).params->entry(qualified_key.substr(dot + 1)).spec->spectral)
+    spectral_dirty_ = true;
+}
+
+double Chain::result(const std::string& name) const {
+  if (auto id = results_.find(name)) return results_.value(*id);
+  throw std::out_of_range("no result \"" + name + "\"");
+}
+
+SolveOutcome Chain::solve(const SolveSpec& spec) {
+  SolveOutcome outcome{spec, std::numeric_limits<double>::quiet_NaN(), 0, false, {}};
+  double* unknown = parameter(spec.unknown);
+  const auto dot = spec.unknown.rfind('.');
+  const bool spectral = slot(spec.unknown.substr(0, dot)).params->entry(spec.unknown.substr(dot + 1)).spec->spectral;
+  const ResultId margin = *results_.find("criteria." + spec.criterion + ".margin");
+  auto f = [&](double x) {
+    *unknown = x;
+    if (spectral) spectral_dirty_ = true;
+    evaluate();
+    return results_.value(margin);
+  };
+  const double f_lo = f(spec.lo), f_hi = f(spec.hi);
+  if (std::isnan(f_lo) || std::isnan(f_hi)) {
+    outcome.message = "the criterion's margin is not a number at the bracket ends";
+    return outcome;
+  }
+  if (f_lo == 0) return outcome.value_si = spec.lo, outcome.converged = true, outcome;
+  if (f_hi == 0) return outcome.value_si = spec.hi, outcome.converged = true, outcome;
+  if ((f_lo > 0) == (f_hi > 0)) {
+    outcome.message = fmt::format("criterion \"{}\" has the same sign at both ends of the bracket (margin {:.4g} and {:.4g}): "
+                                  "no solution in [{:g}, {:g}]",
+                                  spec.criterion, f_lo, f_hi, spec.lo, spec.hi);
+    return outcome;
+  }
+  std::uintmax_t iterations = 200;
+  // Boost.Math TOMS 748 (Alefeld, Potra, Shi 1995): bracketing, superlinear, robust to flat margins.
+  const auto [a, b] = boost::math::tools::toms748_solve(f, spec.lo, spec.hi, f_lo, f_hi,
+                                                        boost::math::tools::eps_tolerance<double>(48), iterations);
+  outcome.value_si = 0.5 * (a + b);
+  outcome.iterations = static_cast<int>(iterations);
+  outcome.converged = iterations < 200;
+  if (!outcome.converged) outcome.message = "no convergence in 200 iterations";
+  *unknown = outcome.value_si;
+  if (spectral) spectral_dirty_ = true;
+  return outcome;
+}
+
+Report Chain::run() {
+  results_.clear_values();
+  evaluate();
+  Report report;
+  report.sensor_file = sensor_file;
+  report.sensor_name = sensor_name;
+  // Several solves form a design: repeat them in order until no unknown moves (they are usually decoupled,
+  // and then one pass suffices).
+  std::vector<double> previous(solves.size(), std::numeric_limits<double>::quiet_NaN());
+  for (int pass = 0; pass < 30 && !solves.empty(); ++pass) {
+    report.solves.clear();
+    bool moved = false;
+    for (std::size_t i = 0; i < solves.size(); ++i) {
+      report.solves.push_back(solve(solves[i]));
+      const double v = report.solves.back().value_si;
+      if (!(std::abs(v - previous[i]) <= 1e-12 * std::abs(v))) moved = true;
+      previous[i] = v;
+    }
+    if (!moved || solves.size() == 1) break;
+  }
+  evaluate();
+  report.results.reserve(results_.size());
+  for (std::size_t i = 0; i < results_.size(); ++i) {
+    report.results.push_back(results_.info(i));
+    report.values.push_back(results_.value(i));
+  }
+  for (const auto& e : expected) {
+    ExpectationOutcome outcome{e, std::numeric_limits<double>::quiet_NaN(), false, false};
+    if (auto id = results_.find(e.result)) {
+      outcome.found = true;
+      outcome.computed_si = results_.value(*id);
+      const double difference = std::abs(outcome.computed_si - e.value_si);
+      const double allowed = std::max(e.tolerance_si, e.rel_tolerance * std::abs(e.value_si));
+      outcome.passed = difference <= allowed;
+    }
+    report.expectations.push_back(outcome);
+  }
+  return report;
+}
+
+}  // namespace radchain

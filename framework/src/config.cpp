@@ -1,0 +1,150 @@
+// The only file that sees toml++: it turns a TOML document into the framework's ConfigValue tree.
+#include "radchain/config.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <fstream>
+#include <sstream>
+
+namespace radchain {
+namespace {
+
+SourceLocation location_of(const toml::node& node, const std::string& file) {
+  const auto& begin = node.source().begin;
+  return SourceLocation{file, static_cast<int>(begin.line), static_cast<int>(begin.column)};
+}
+
+ConfigValue convert(const toml::node& node, const std::string& file) {
+  ConfigValue out;
+  out.where = location_of(node, file);
+  switch (node.type()) {
+    case toml::node_type::string:
+      out.type = ConfigValue::Type::string;
+      out.string_value = std::string(*node.value<std::string_view>());
+      break;
+    case toml::node_type::integer:
+      out.type = ConfigValue::Type::integer;
+      out.integer_value = *node.value<std::int64_t>();
+      break;
+    case toml::node_type::floating_point:
+      out.type = ConfigValue::Type::floating;
+      out.floating_value = *node.value<double>();
+      break;
+    case toml::node_type::boolean:
+      out.type = ConfigValue::Type::boolean;
+      out.boolean_value = *node.value<bool>();
+      break;
+    case toml::node_type::array:
+      out.type = ConfigValue::Type::array;
+      for (const auto& item : *node.as_array()) out.items.push_back(convert(item, file));
+      break;
+    case toml::node_type::table: {
+      out.type = ConfigValue::Type::table;
+      for (const auto& [key, value] : *node.as_table()) {
+        ConfigValue member = convert(value, file);
+        // The key's own position is where an "unknown key" error should point.
+        const auto& key_begin = key.source().begin;
+        if (key_begin.line) member.where = SourceLocation{file, int(key_begin.line), int(key_begin.column)};
+        out.members.emplace_back(std::string(key.str()), std::move(member));
+      }
+      // toml++ keeps keys sorted; messages and reports follow the file's order instead.
+      std::stable_sort(out.members.begin(), out.members.end(), [](const auto& a, const auto& b) {
+        return std::tie(a.second.where.line, a.second.where.column) < std::tie(b.second.where.line, b.second.where.column);
+      });
+      break;
+    }
+    default:
+      out.type = ConfigValue::Type::other;  // dates and times: no radchain key takes them
+      break;
+  }
+  return out;
+}
+
+ConfigValue parse(std::string_view text, const std::string& name) {
+  try {
+    toml::table table = toml::parse(text, std::string_view(name));
+    ConfigValue root = convert(table, name);
+    root.where = SourceLocation{name, 0, 0};
+    return root;
+  } catch (const toml::parse_error& error) {
+    const auto& begin = error.source().begin;
+    throw InputError(SourceLocation{name, int(begin.line), int(begin.column)}, "TOML syntax", "",
+                     std::string(error.description()));
+  }
+}
+
+}  // namespace
+
+const ConfigValue* ConfigValue::find(const std::string& key) const {
+  for (const auto& [name, value] : members)
+    if (name == key) return &value;
+  return nullptr;
+}
+ConfigValue* ConfigValue::find(const std::string& key) {
+  for (auto& [name, value] : members)
+    if (name == key) return &value;
+  return nullptr;
+}
+
+std::string ConfigValue::as_toml() const {
+  switch (type) {
+    case Type::string: return "\"" + string_value + "\"";
+    case Type::integer: return std::to_string(integer_value);
+    case Type::floating: return fmt::format("{}", floating_value);
+    case Type::boolean: return boolean_value ? "true" : "false";
+    case Type::array: {
+      std::vector<std::string> parts;
+      for (const auto& item : items) parts.push_back(item.as_toml());
+      return "[" + join(parts) + "]";
+    }
+    case Type::table: {
+      std::vector<std::string> parts;
+      for (const auto& [key, value] : members) parts.push_back(key + " = " + value.as_toml());
+      return "{ " + join(parts) + " }";
+    }
+    default: return "(date/time)";
+  }
+}
+
+std::string ConfigValue::type_name() const {
+  switch (type) {
+    case Type::string: return "a string";
+    case Type::integer: return "an integer";
+    case Type::floating: return "a number";
+    case Type::boolean: return "a boolean";
+    case Type::array: return "an array";
+    case Type::table: return "a table";
+    default: return "a date/time";
+  }
+}
+
+ConfigValue parse_toml_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0, 0}, "sensor file", "", "cannot be read (missing file or no permission)");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse(buffer.str(), path);
+}
+
+ConfigValue parse_toml_text(const std::string& text, const std::string& name_for_messages) {
+  return parse(text, name_for_messages);
+}
+
+ConfigValue parse_toml_value(const std::string& text, const std::string& name_for_messages) {
+  try {
+    toml::table table = toml::parse("v = " + text, std::string_view(name_for_messages));
+    ConfigValue value = convert(*table.get("v"), name_for_messages);
+    value.where = SourceLocation{name_for_messages, 0, 0};
+    return value;
+  } catch (const toml::parse_error&) {
+    ConfigValue value;  // not TOML: a bare word such as 20 cm is meant as a string
+    value.type = ConfigValue::Type::string;
+    value.string_value = text;
+    value.where = SourceLocation{name_for_messages, 0, 0};
+    return value;
+  }
+}
+
+}  // namespace radchain

@@ -1,0 +1,147 @@
+#include "radchain/plugin_host.hpp"
+
+#include "radchain/error.hpp"
+
+#include <boost/dll/runtime_symbol_info.hpp>
+#include <boost/dll/shared_library.hpp>
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+#include <fmt/format.h>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace radchain {
+namespace fs = std::filesystem;
+
+struct PluginHost::Impl {
+  std::deque<boost::dll::shared_library> libraries;  // never unloaded
+  std::map<std::string, const PluginInfo*> by_path;
+  std::set<std::string> shadow_warnings;
+};
+
+PluginHost& PluginHost::instance() {
+  static PluginHost* host = new PluginHost();  // intentionally never destroyed: libraries outlive every object
+  return *host;
+}
+
+PluginHost::PluginHost() : impl_(new Impl) { configure({}); }
+
+void PluginHost::configure(const std::vector<std::string>& explicit_dirs) {
+  search_path_.clear();
+  auto add = [&](const std::string& dir) {
+    if (!dir.empty() && std::find(search_path_.begin(), search_path_.end(), dir) == search_path_.end())
+      search_path_.push_back(dir);
+  };
+  for (const auto& d : explicit_dirs) {
+    std::stringstream parts(d);
+    std::string part;
+    while (std::getline(parts, part, ':')) add(part);
+  }
+  if (const char* env = std::getenv("RADCHAIN_PLUGIN_PATH")) {
+    std::stringstream parts(env);
+    std::string part;
+    while (std::getline(parts, part, ':')) add(part);
+  }
+  std::error_code ec;
+  const fs::path exe_dir = boost::dll::program_location(ec).parent_path();
+  if (!ec) {
+    add((exe_dir / "plugins").string());                           // build tree
+    add((exe_dir / ".." / "lib" / "radchain" / "plugins").lexically_normal().string());
+  }
+#ifdef RADCHAIN_INSTALL_PLUGIN_DIR
+  add(RADCHAIN_INSTALL_PLUGIN_DIR);
+#endif
+}
+
+std::vector<PluginFile> PluginHost::discover() const {
+  std::vector<PluginFile> found;
+  std::map<std::string, std::string> first_path;  // name -> path
+  for (const auto& dir : search_path_) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) continue;
+    for (const auto& kind_dir : fs::directory_iterator(dir, ec)) {
+      const auto kind = kind_from_directory(kind_dir.path().filename().string());
+      if (!kind || !kind_dir.is_directory()) continue;
+      std::vector<fs::path> files;
+      for (const auto& file : fs::directory_iterator(kind_dir.path(), ec))
+        if (file.is_regular_file() && file.path().extension() == ".so") files.push_back(file.path());
+      std::sort(files.begin(), files.end());
+      for (const auto& file : files) {
+        const std::string name = file.stem().string();
+        auto [it, inserted] = first_path.emplace(name, file.string());
+        if (inserted) {
+          found.push_back(PluginFile{name, *kind, file.string()});
+        } else if (it->second != file.string() && impl_->shadow_warnings.insert(file.string()).second) {
+          std::cerr << fmt::format("radchain: plugin \"{}\" at {} is shadowed by {} (first in the search path wins)\n",
+                                   name, file.string(), it->second);
+        }
+      }
+    }
+  }
+  std::sort(found.begin(), found.end(), [](const PluginFile& a, const PluginFile& b) {
+    return std::make_pair(static_cast<int>(a.kind), a.name) < std::make_pair(static_cast<int>(b.kind), b.name);
+  });
+  return found;
+}
+
+const PluginInfo& PluginHost::load_file(const std::string& path) {
+  if (auto it = impl_->by_path.find(path); it != impl_->by_path.end()) return *it->second;
+  auto fail = [&](const std::string& problem) { return InputError(SourceLocation{path, 0, 0}, "plugin library", "", problem); };
+
+  boost::dll::shared_library library;
+  std::error_code ec;
+  library.load(fs::path(path), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
+  if (ec) {
+    // Boost keeps only an error code; ask the dynamic loader for its reason (error path only).
+    std::string reason = "not a loadable shared library";
+    if (void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+      ::dlclose(handle);
+    } else if (const char* why = ::dlerror()) {
+      reason = why;
+    }
+    throw fail("cannot be loaded: " + reason);
+  }
+  // The ABI number is read before anything in the library is called.
+  if (!library.has("radchain_plugin_abi_version"))
+    throw fail("not a radchain plugin: it exports no radchain_plugin_abi_version (declare it with RADCHAIN_PLUGIN)");
+  const std::uint32_t abi = library.get<const std::uint32_t>("radchain_plugin_abi_version");
+  if (abi != plugin_abi_version)
+    throw fail(fmt::format("built for plugin ABI {}, this radchain {} has ABI {}: rebuild the plugin against it", abi,
+                           framework_version, plugin_abi_version));
+  if (!library.has("radchain_plugin_info"))
+    throw fail("no entry symbol radchain_plugin_info (declare it with RADCHAIN_PLUGIN at the bottom of the plugin)");
+  const PluginInfo& info = library.get_alias<const PluginInfo&()>("radchain_plugin_info")();
+  if (info.abi_version != plugin_abi_version)
+    throw fail(fmt::format("its PluginInfo says ABI {}, this radchain has ABI {}", info.abi_version, plugin_abi_version));
+  const std::string stem = fs::path(path).stem().string();
+  if (stem != info.name)
+    throw fail(fmt::format("declares the name \"{}\" but the file is named \"{}\": the two must be one string", info.name, stem));
+  const auto dir_kind = kind_from_directory(fs::path(path).parent_path().filename().string());
+  if (dir_kind && *dir_kind != info.kind)
+    throw fail(fmt::format("is a {} plugin but lies in a {}/ folder", to_string(info.kind), kind_directory(*dir_kind)));
+  impl_->libraries.push_back(std::move(library));
+  impl_->by_path.emplace(path, &info);
+  return info;
+}
+
+const PluginInfo& PluginHost::load(Kind kind, const std::string& name) {
+  std::vector<std::string> available;
+  for (const auto& file : discover()) {
+    if (file.kind != kind) continue;
+    if (file.name == name) return load_file(file.path);
+    available.push_back(file.name);
+  }
+  const std::string near = nearest_match(name, available);
+  throw InputError({}, "", "",
+                   fmt::format("unknown {} plugin \"{}\"{}; available: {} (search path: {})", to_string(kind), name,
+                               near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+                               available.empty() ? "none" : join(available), join(search_path_, ":")));
+}
+
+}  // namespace radchain

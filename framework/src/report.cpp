@@ -1,0 +1,104 @@
+#include "radchain/report.hpp"
+
+#include "radchain/units.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace radchain {
+
+std::string format_value(double value_si, const ResultInfo& info) {
+  if (std::isnan(value_si)) return "-";
+  const double v = value_si * info.display_factor;
+  return fmt::format("{:.6g}", v);
+}
+
+static std::string display_of_expectation(const ExpectationOutcome& e, const ResultInfo* info) {
+  (void)info;
+  return e.spec.as_written;
+}
+
+std::string format_report_text(const Report& report) {
+  std::string out = fmt::format("{}  ({})\n", report.sensor_name, report.sensor_file);
+  std::size_t name_width = 6, value_width = 5, unit_width = 4, stage_width = 5;
+  for (std::size_t i = 0; i < report.results.size(); ++i) {
+    name_width = std::max(name_width, report.results[i].name.size());
+    value_width = std::max(value_width, format_value(report.values[i], report.results[i]).size());
+    unit_width = std::max(unit_width, report.results[i].display_unit.size());
+    stage_width = std::max(stage_width, report.results[i].stage.size());
+  }
+  out += fmt::format("  {:<{}}  {:>{}}  {:<{}}  {:<{}}  {}\n", "result", name_width, "value", value_width, "unit",
+                     unit_width, "stage", stage_width, "equation");
+  for (std::size_t i = 0; i < report.results.size(); ++i) {
+    const ResultInfo& info = report.results[i];
+    out += fmt::format("  {:<{}}  {:>{}}  {:<{}}  {:<{}}  {}\n", info.name, name_width,
+                       format_value(report.values[i], info), value_width, info.display_unit, unit_width, info.stage,
+                       stage_width, info.equation);
+  }
+  if (!report.solves.empty()) {
+    out += "solves:\n";
+    for (const auto& s : report.solves) {
+      out += fmt::format("  {} from criterion \"{}\": {}\n", s.spec.unknown, s.spec.criterion,
+                         s.converged ? fmt::format("converged in {} evaluations", s.iterations) : "FAILED: " + s.message);
+    }
+  }
+  if (!report.expectations.empty()) {
+    out += "expected (printed reference) vs computed:\n";
+    for (const auto& e : report.expectations) {
+      const ResultInfo* info = nullptr;
+      for (const auto& r : report.results)
+        if (r.name == e.spec.result) info = &r;
+      std::string computed = "-";
+      std::string delta = "-";
+      if (info && e.found) {
+        double factor = info->display_factor;
+        std::string unit = info->display_unit;
+        if (!e.spec.display_unit.empty()) {
+          factor = 1.0 / units::conversion(e.spec.display_unit, info->si_unit).factor;
+          unit = e.spec.display_unit;
+        }
+        computed = fmt::format("{:.6g} {}", e.computed_si * factor, unit == "1" ? "" : unit);
+        const double d = (e.computed_si - e.spec.value_si) * factor;
+        const double rel = e.spec.value_si != 0 ? (e.computed_si - e.spec.value_si) / std::abs(e.spec.value_si) : 0.0;
+        delta = fmt::format("{:+.3g} ({:+.2f} %)", d, 100 * rel);
+      }
+      out += fmt::format("  {:<4} {:<40} printed {:<14} computed {:<18} delta {:<22} {}\n", e.passed ? "ok" : "FAIL",
+                         e.spec.result, display_of_expectation(e, info), computed, delta, e.spec.source);
+    }
+  }
+  return out;
+}
+
+std::string format_report_json(const Report& report) {
+  nlohmann::ordered_json j;
+  j["sensor"] = report.sensor_name;
+  j["file"] = report.sensor_file;
+  auto& results = j["results"] = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < report.results.size(); ++i) {
+    const auto& info = report.results[i];
+    nlohmann::ordered_json r;
+    r["name"] = info.name;
+    r["value_si"] = std::isnan(report.values[i]) ? nlohmann::ordered_json() : nlohmann::ordered_json(report.values[i]);
+    r["si_unit"] = info.si_unit;
+    r["value"] = std::isnan(report.values[i]) ? nlohmann::ordered_json()
+                                              : nlohmann::ordered_json(report.values[i] * info.display_factor);
+    r["unit"] = info.display_unit;
+    r["stage"] = info.stage;
+    r["equation"] = info.equation;
+    results.push_back(r);
+  }
+  auto& solves = j["solves"] = nlohmann::ordered_json::array();
+  for (const auto& s : report.solves)
+    solves.push_back({{"unknown", s.spec.unknown}, {"criterion", s.spec.criterion}, {"value_si", s.value_si},
+                      {"converged", s.converged}, {"evaluations", s.iterations}, {"message", s.message}});
+  auto& expectations = j["expected"] = nlohmann::ordered_json::array();
+  for (const auto& e : report.expectations)
+    expectations.push_back({{"result", e.spec.result}, {"printed", e.spec.as_written}, {"printed_si", e.spec.value_si},
+                            {"computed_si", e.computed_si}, {"tolerance_si", e.spec.tolerance_si},
+                            {"rel_tolerance", e.spec.rel_tolerance}, {"passed", e.passed}, {"source", e.spec.source}});
+  j["passed"] = report.all_passed();
+  return j.dump(2) + "\n";
+}
+
+}  // namespace radchain

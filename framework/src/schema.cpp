@@ -1,0 +1,274 @@
+#include "radchain/schema.hpp"
+
+#include "radchain/error.hpp"
+#include "radchain/spectrum_csv.hpp"
+#include "radchain/units.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+#include <sstream>
+#include <stdexcept>
+
+namespace radchain {
+namespace fs = std::filesystem;
+
+ParamSpec quantity(std::string key, std::string si_unit, std::string example) {
+  ParamSpec p;
+  p.key = std::move(key), p.type = ParamType::quantity, p.si_unit = std::move(si_unit), p.example = std::move(example);
+  return p;
+}
+ParamSpec number(std::string key, std::string example) {
+  ParamSpec p;
+  p.key = std::move(key), p.type = ParamType::number, p.si_unit = "1", p.example = std::move(example);
+  return p;
+}
+ParamSpec integer(std::string key, std::string example) {
+  ParamSpec p;
+  p.key = std::move(key), p.type = ParamType::integer, p.si_unit = "1", p.example = std::move(example);
+  return p;
+}
+ParamSpec text(std::string key, std::string example) {
+  ParamSpec p;
+  p.key = std::move(key), p.type = ParamType::text, p.example = "\"" + example + "\"";
+  return p;
+}
+ParamSpec choice(std::string key, std::vector<std::string> choices) {
+  ParamSpec p;
+  p.key = std::move(key), p.type = ParamType::choice, p.example = "\"" + choices.front() + "\"";
+  p.choices = std::move(choices);
+  return p;
+}
+ParamSpec flag(std::string key) {
+  ParamSpec p;
+  p.key = std::move(key), p.type = ParamType::flag, p.example = "false";
+  return p;
+}
+ParamSpec spectrum_file(std::string key, std::string si_unit, std::string example) {
+  ParamSpec p;
+  p.key = std::move(key), p.type = ParamType::spectrum, p.si_unit = std::move(si_unit);
+  p.example = "\"" + example + "\"";
+  p.spectral = true;
+  return p;
+}
+
+static std::string number_text(double v) { return fmt::format("{:g}", v); }
+
+std::string ParamSpec::range_text() const {
+  if (type == ParamType::choice) return "one of " + join(choices);
+  const std::string unit = (type == ParamType::quantity && si_unit != "1") ? " " + si_unit : "";
+  const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
+  if (has_min && has_max)
+    return fmt::format("in {}{}, {}{}{}", min_exclusive ? "(" : "[", number_text(min), number_text(max),
+                       max_exclusive ? ")" : "]", unit);
+  if (has_min) return fmt::format("{} {}{}", min_exclusive ? ">" : ">=", number_text(min), unit);
+  if (has_max) return fmt::format("{} {}{}", max_exclusive ? "<" : "<=", number_text(max), unit);
+  return {};
+}
+
+std::string ParamSpec::expected_text() const {
+  switch (type) {
+    case ParamType::quantity: return fmt::format("expected {}, e.g. {}", units::dimension_name(si_unit), example);
+    case ParamType::number: return fmt::format("expected a number, e.g. {}", example);
+    case ParamType::integer: return fmt::format("expected an integer, e.g. {}", example);
+    case ParamType::text: return fmt::format("expected a string, e.g. {}", example);
+    case ParamType::choice: return "expected one of " + join(choices);
+    case ParamType::flag: return "expected true or false";
+    case ParamType::spectrum: return fmt::format("expected the name of a spectrum CSV file, e.g. {}", example);
+  }
+  return {};
+}
+
+bool ParamSpec::in_range(double v) const {
+  if (std::isnan(v)) return false;
+  if (min_exclusive ? !(v > min) : !(v >= min)) return false;
+  if (max_exclusive ? !(v < max) : !(v <= max)) return false;
+  return true;
+}
+
+Params::Params(std::string section, std::string plugin, const Schema* schema)
+    : section_(std::move(section)), plugin_(std::move(plugin)), schema_(schema) {
+  entries_.resize(schema_->size());
+  for (std::size_t i = 0; i < schema_->size(); ++i) entries_[i].spec = &(*schema_)[i];
+}
+
+std::string Params::context() const { return fmt::format("{} (plugin \"{}\")", section_, plugin_); }
+
+const Params::Entry& Params::entry(const std::string& key) const {
+  for (const auto& e : entries_)
+    if (e.spec->key == key) return e;
+  throw std::logic_error("plugin \"" + plugin_ + "\" asked for \"" + key + "\", which is not in its schema");
+}
+Params::Entry& Params::entry(const std::string& key) {
+  return const_cast<Entry&>(static_cast<const Params&>(*this).entry(key));
+}
+
+bool Params::has(const std::string& key) const { return entry(key).present; }
+bool Params::given(const std::string& key) const { return entry(key).given; }
+
+double Params::get(const std::string& key) const {
+  const Entry& e = entry(key);
+  if (!e.present) throw std::logic_error("parameter \"" + key + "\" of \"" + plugin_ + "\" has no value");
+  return e.number;
+}
+std::optional<double> Params::maybe(const std::string& key) const {
+  const Entry& e = entry(key);
+  return e.present ? std::optional<double>(e.number) : std::nullopt;
+}
+const double* Params::handle(const std::string& key) const { return &entry(key).number; }
+std::int64_t Params::integer(const std::string& key) const { return static_cast<std::int64_t>(get(key)); }
+const std::string& Params::text(const std::string& key) const { return entry(key).text; }
+bool Params::flag(const std::string& key) const { return entry(key).flag; }
+const Spectrum& Params::spectrum(const std::string& key) const {
+  const Entry& e = entry(key);
+  if (!e.spectrum) throw std::logic_error("parameter \"" + key + "\" of \"" + plugin_ + "\" has no spectrum");
+  return *e.spectrum;
+}
+
+void Params::reject(const std::string& key, const std::string& problem) const {
+  const Entry& e = entry(key);
+  throw InputError(e.where, context(), key + " = " + e.as_written, problem);
+}
+
+std::optional<std::string> resolve_data_file(const std::string& name, const std::string& sensor_file) {
+  const fs::path given(name);
+  std::vector<fs::path> candidates;
+  if (given.is_absolute()) {
+    candidates.push_back(given);
+  } else {
+    candidates.push_back(fs::path(sensor_file).parent_path() / given);
+    if (const char* env = std::getenv("RADCHAIN_DATA_PATH")) {
+      std::stringstream dirs(env);
+      std::string dir;
+      while (std::getline(dirs, dir, ':'))
+        if (!dir.empty()) candidates.push_back(fs::path(dir) / given);
+    }
+#ifdef RADCHAIN_SOURCE_SPECTRA_DIR
+    candidates.push_back(fs::path(RADCHAIN_SOURCE_SPECTRA_DIR) / given);
+#endif
+#ifdef RADCHAIN_INSTALL_SPECTRA_DIR
+    candidates.push_back(fs::path(RADCHAIN_INSTALL_SPECTRA_DIR) / given);
+#endif
+  }
+  for (const auto& candidate : candidates) {
+    std::error_code ec;
+    if (fs::is_regular_file(candidate, ec)) return candidate.lexically_normal().string();
+  }
+  return std::nullopt;
+}
+
+void assign_param(Params& params, Params::Entry& entry, const ConfigValue& value, const ValidationContext& context) {
+  const ParamSpec& spec = *entry.spec;
+  entry.where = value.where;
+  entry.as_written = value.as_toml();
+  const std::string subject = spec.key + " = " + entry.as_written;
+  auto fail = [&](const std::string& problem) {
+    return InputError(value.where, params.context(), subject, problem);
+  };
+  auto check_range = [&](double v) {
+    if (!spec.in_range(v)) throw fail("out of range: accepted " + spec.range_text());
+  };
+  switch (spec.type) {
+    case ParamType::quantity: {
+      if (value.is_number())
+        throw fail(fmt::format("a bare number has no unit: {}", spec.expected_text()));
+      if (value.type != ConfigValue::Type::string) throw fail(spec.expected_text());
+      units::ParsedQuantity q;
+      try {
+        q = units::split_quantity(value.string_value);
+      } catch (const std::invalid_argument&) {
+        throw fail("does not start with a number: " + spec.expected_text());
+      }
+      if (q.unit.empty() && units::dimension_of(spec.si_unit) != "1")
+        throw fail(fmt::format("no unit: {}", spec.expected_text()));
+      double factor = 1.0;
+      try {
+        factor = units::conversion(q.unit.empty() ? "1" : q.unit, spec.si_unit).factor;
+      } catch (const std::invalid_argument&) {
+        throw fail(fmt::format("unknown unit \"{}\": {}", q.unit, spec.expected_text()));
+      } catch (const std::domain_error&) {
+        throw fail(spec.expected_text());
+      }
+      entry.number = q.number * factor;
+      check_range(entry.number);
+      break;
+    }
+    case ParamType::number:
+      if (!value.is_number()) throw fail(spec.expected_text());
+      entry.number = value.number();
+      check_range(entry.number);
+      break;
+    case ParamType::integer:
+      if (value.type != ConfigValue::Type::integer) throw fail(spec.expected_text());
+      entry.number = static_cast<double>(value.integer_value);
+      check_range(entry.number);
+      break;
+    case ParamType::text:
+      if (value.type != ConfigValue::Type::string) throw fail(spec.expected_text());
+      entry.text = value.string_value;
+      break;
+    case ParamType::choice: {
+      if (value.type != ConfigValue::Type::string) throw fail(spec.expected_text());
+      bool ok = false;
+      for (const auto& c : spec.choices) ok = ok || c == value.string_value;
+      if (!ok) throw fail(spec.expected_text());
+      entry.text = value.string_value;
+      break;
+    }
+    case ParamType::flag:
+      if (value.type != ConfigValue::Type::boolean) throw fail(spec.expected_text());
+      entry.flag = value.boolean_value;
+      break;
+    case ParamType::spectrum: {
+      if (value.type != ConfigValue::Type::string) throw fail(spec.expected_text());
+      const auto path = resolve_data_file(value.string_value, context.sensor_file);
+      if (!path) throw fail("file not found (looked beside the sensor file, in RADCHAIN_DATA_PATH and in spectra/)");
+      try {
+        entry.spectrum = std::make_shared<const Spectrum>(cached_spectrum_csv(*path, spec.si_unit).spectrum);
+      } catch (const InputError& error) {
+        throw fail(error.what());
+      }
+      entry.text = *path;
+      break;
+    }
+  }
+  entry.present = true;
+}
+
+Params validate_section(const Schema& schema, const ConfigValue& table, const ValidationContext& context) {
+  Params params(context.section, context.plugin, &schema);
+  std::vector<std::string> accepted;
+  for (const auto& spec : schema) accepted.push_back(spec.key);
+  for (const auto& [key, value] : table.members) {
+    if (key == "plugin") continue;
+    bool known = false;
+    for (auto& entry : params.entries()) {
+      if (entry.spec->key != key) continue;
+      known = true;
+      assign_param(params, entry, value, context);
+      entry.given = true;
+    }
+    if (!known) {
+      const std::string near = nearest_match(key, accepted);
+      throw InputError(value.where, params.context(), key,
+                       fmt::format("unknown key{}; accepted keys: {}", near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+                                   accepted.empty() ? "(none)" : join(accepted)));
+    }
+  }
+  for (auto& entry : params.entries()) {
+    if (entry.present) continue;
+    const ParamSpec& spec = *entry.spec;
+    if (spec.required)
+      throw InputError(table.where, params.context(), spec.key,
+                       fmt::format("missing required key: {} ({})", spec.expected_text(), spec.doc));
+    if (spec.default_value) {
+      ConfigValue fallback = parse_toml_value(*spec.default_value, "default of " + spec.key);
+      fallback.where = table.where;
+      assign_param(params, entry, fallback, context);
+    }
+  }
+  return params;
+}
+
+}  // namespace radchain

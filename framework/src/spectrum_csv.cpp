@@ -1,0 +1,148 @@
+#include "radchain/spectrum_csv.hpp"
+
+#include "radchain/error.hpp"
+#include "radchain/units.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace radchain {
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  if (!text.empty() && text.back() == separator) parts.emplace_back();
+  return parts;
+}
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+bool has_letter(const std::string& token) {
+  for (char c : token)
+    if (std::isalpha(static_cast<unsigned char>(c))) return true;
+  return false;
+}
+
+// The unit carried by the end of a column name: the longest run of trailing '_'-separated tokens (leaving at
+// least one token for the quantity's name) that udunits reads as a unit. "W_m-2_nm-1" -> "W m-2 nm-1";
+// a leading "per" reads as a reciprocal: "alpha_per_cm" -> "1/(cm)". Empty when there is none.
+std::string unit_of_column(const std::string& column) {
+  const std::vector<std::string> tokens = split(column, '_');
+  for (std::size_t first = 1; first < tokens.size(); ++first) {
+    bool plausible = true;
+    for (std::size_t i = first; i < tokens.size(); ++i) plausible = plausible && has_letter(tokens[i]);
+    if (!plausible) continue;
+    std::string unit;
+    bool reciprocal = tokens[first] == "per";
+    for (std::size_t i = first + (reciprocal ? 1 : 0); i < tokens.size(); ++i) unit += (unit.empty() ? "" : " ") + tokens[i];
+    if (unit.empty()) continue;
+    if (reciprocal) unit = "1/(" + unit + ")";
+    if (units::parses(unit)) return unit;
+  }
+  return {};
+}
+
+}  // namespace
+
+SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expected_si_unit,
+                               Extrapolation extrapolation) {
+  std::ifstream in(path);
+  auto fail = [&](int line, const std::string& problem) -> InputError {
+    return InputError(SourceLocation{path, line, 0}, "spectrum file", "", problem);
+  };
+  if (!in) throw fail(0, "cannot be read (missing file or no permission)");
+
+  SpectrumFile out;
+  std::string line;
+  int line_number = 0;
+  bool have_header = false;
+  double wavelength_factor = 1.0, value_factor = 1.0;
+  std::vector<double> wavelengths, values;
+  while (std::getline(in, line)) {
+    ++line_number;
+    const std::string text = trim(line);
+    if (text.empty()) throw fail(line_number, "blank line (the format has none)");
+    if (text.front() == '#') {
+      if (have_header) throw fail(line_number, "comment after the header line");
+      out.provenance += text + "\n";
+      continue;
+    }
+    const std::vector<std::string> fields = split(text, ',');
+    if (fields.size() != 2)
+      throw fail(line_number, "expected 2 comma-separated columns, found " + std::to_string(fields.size()));
+    if (!have_header) {
+      if (out.provenance.empty())
+        throw fail(line_number, "no provenance: the file must start with '#' comment lines saying where the data come from");
+      const std::string wl = trim(fields[0]);
+      if (wl.rfind("wavelength_", 0) != 0)
+        throw fail(line_number, "no unit header: the first column must be named wavelength_<unit>, e.g. wavelength_nm");
+      try {
+        wavelength_factor = units::conversion(wl.substr(11), "m").factor;
+      } catch (const std::exception&) {
+        throw fail(line_number, "wavelength column unit \"" + wl.substr(11) + "\" is not a length");
+      }
+      out.value_column = trim(fields[1]);
+      const std::string unit = unit_of_column(out.value_column);
+      const bool dimensionless_expected = units::dimension_of(expected_si_unit) == "1";
+      if (unit.empty() && !dimensionless_expected)
+        throw fail(line_number, "no unit in the header's value column \"" + out.value_column + "\": expected " +
+                                    units::dimension_name(expected_si_unit) + ", e.g. spectral_irradiance_W_m-2_nm-1");
+      try {
+        value_factor = units::conversion(unit.empty() ? "1" : unit, expected_si_unit).factor;
+      } catch (const std::exception&) {
+        throw fail(line_number, "value column \"" + out.value_column + "\" is in " + unit + ": expected " +
+                                    units::dimension_name(expected_si_unit));
+      }
+      have_header = true;
+      continue;
+    }
+    double w = 0, v = 0;
+    try {
+      std::size_t used_w = 0, used_v = 0;
+      const std::string ws = trim(fields[0]), vs = trim(fields[1]);
+      w = std::stod(ws, &used_w);
+      v = std::stod(vs, &used_v);
+      if (used_w != ws.size() || used_v != vs.size()) throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+      throw fail(line_number, "\"" + text + "\" is not two numbers");
+    }
+    if (!std::isfinite(w) || !std::isfinite(v)) throw fail(line_number, "non-finite number");
+    if (!wavelengths.empty() && !(w * wavelength_factor > wavelengths.back()))
+      throw fail(line_number, "wavelengths must be strictly increasing (" + trim(fields[0]) + " follows a larger or equal one)");
+    wavelengths.push_back(w * wavelength_factor);
+    values.push_back(v * value_factor);
+  }
+  if (!have_header) throw fail(line_number, "no header line (wavelength_<unit>,<quantity>_<unit>)");
+  if (wavelengths.size() < 2) throw fail(line_number, "fewer than 2 data rows");
+  out.spectrum = Spectrum(Eigen::Map<Eigen::ArrayXd>(wavelengths.data(), static_cast<Eigen::Index>(wavelengths.size())),
+                          Eigen::Map<Eigen::ArrayXd>(values.data(), static_cast<Eigen::Index>(values.size())),
+                          expected_si_unit, extrapolation);
+  return out;
+}
+
+const SpectrumFile& cached_spectrum_csv(const std::string& path, const std::string& expected_si_unit,
+                                        Extrapolation extrapolation) {
+  static std::mutex mutex;
+  static std::map<std::tuple<std::string, std::string, int>, SpectrumFile> cache;
+  std::lock_guard lock(mutex);
+  const auto key = std::make_tuple(path, expected_si_unit, static_cast<int>(extrapolation));
+  auto it = cache.find(key);
+  if (it == cache.end()) it = cache.emplace(key, load_spectrum_csv(path, expected_si_unit, extrapolation)).first;
+  return it->second;
+}
+
+}  // namespace radchain

@@ -1,0 +1,159 @@
+#include "radchain/units.hpp"
+
+#include <udunits2.h>
+
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <regex>
+#include <stdexcept>
+
+namespace radchain::units {
+namespace {
+
+// udunits is not thread-safe; every call goes through this lock (units are parsed while loading files,
+// never inside evaluations).
+std::mutex& registry_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+struct Registry {
+  ut_system* system = nullptr;
+  Registry() {
+    ut_set_error_message_handler(ut_ignore);
+    system = ut_read_xml(nullptr);
+    if (!system) throw std::runtime_error("udunits2: cannot read its unit database (set UDUNITS2_XML_PATH)");
+    // Electron counts: a base dimension of their own, so "e-" never means coulomb.
+    ut_unit* electron = ut_new_base_unit(system);
+    ut_map_name_to_unit("electron", UT_ASCII, electron);
+    ut_map_name_to_unit("electrons", UT_ASCII, electron);
+    ut_map_unit_to_name(electron, "electron", UT_ASCII);
+    alias("deg", "arc_degree");
+    alias("AU", "astronomical_unit");
+    alias("lp", "1");  // line pairs (cycles) per length are counted as plain reciprocal lengths
+    alias("cy", "1");
+  }
+  void alias(const char* symbol, const char* target) {
+    ut_unit* unit = ut_parse(system, target, UT_ASCII);
+    ut_map_symbol_to_unit(symbol, UT_ASCII, unit);
+  }
+};
+
+Registry& registry() {
+  static Registry r;  // lives for the process; udunits' own atexit handling is not needed
+  return r;
+}
+
+// "e-" (electron) is not udunits syntax: rewrite it as the electron unit before parsing.
+std::string preprocess(const std::string& unit) {
+  static const std::regex electron(R"((^|[\s*/.(])e-(?=$|[\s*/.)^]))");
+  return std::regex_replace(unit, electron, "$1electron");
+}
+
+struct UnitDeleter {
+  void operator()(ut_unit* u) const { ut_free(u); }
+};
+using UnitPtr = std::unique_ptr<ut_unit, UnitDeleter>;
+
+UnitPtr parse_locked(const std::string& text) {
+  const std::string prepared = preprocess(text);
+  ut_unit* unit = ut_parse(registry().system, prepared.c_str(), UT_UTF8);
+  if (!unit) throw std::invalid_argument("unknown unit \"" + text + "\"");
+  return UnitPtr(unit);
+}
+
+// The dimension as base units with exponents, scale dropped: "1e-06 m" -> "m".
+std::string signature_locked(const ut_unit* unit) {
+  char buffer[256];
+  const int n = ut_format(unit, buffer, sizeof buffer, UT_ASCII | UT_DEFINITION | UT_NAMES);
+  if (n < 0 || n >= static_cast<int>(sizeof buffer)) throw std::invalid_argument("unit too complex");
+  std::string text(buffer, static_cast<std::size_t>(n));
+  // Drop a leading numeric scale and an optional offset description.
+  std::size_t i = 0;
+  while (i < text.size() && (std::isdigit(static_cast<unsigned char>(text[i])) || text[i] == '.' ||
+                             text[i] == 'e' || text[i] == '-' || text[i] == '+')) {
+    // stop if this 'e' starts a unit name like "electron"
+    if (text[i] == 'e' && i + 1 < text.size() && std::isalpha(static_cast<unsigned char>(text[i + 1]))) break;
+    ++i;
+  }
+  while (i < text.size() && text[i] == ' ') ++i;
+  return i < text.size() ? text.substr(i) : std::string("1");
+}
+
+}  // namespace
+
+std::string dimension_of(const std::string& unit) {
+  std::lock_guard lock(registry_mutex());
+  UnitPtr u = parse_locked(unit);
+  return signature_locked(u.get());
+}
+
+bool parses(const std::string& unit) {
+  try {
+    dimension_of(unit);
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
+Conversion conversion(const std::string& unit, const std::string& si_unit) {
+  std::lock_guard lock(registry_mutex());
+  UnitPtr from = parse_locked(unit.empty() ? "1" : unit);
+  UnitPtr to = parse_locked(si_unit.empty() ? "1" : si_unit);
+  if (signature_locked(from.get()) != signature_locked(to.get()) || !ut_are_convertible(from.get(), to.get()))
+    throw std::domain_error("\"" + unit + "\" is not convertible to \"" + si_unit + "\"");
+  cv_converter* converter = ut_get_converter(from.get(), to.get());
+  if (!converter) throw std::domain_error("no conversion from \"" + unit + "\" to \"" + si_unit + "\"");
+  const double zero = cv_convert_double(converter, 0.0);
+  const double one = cv_convert_double(converter, 1.0);
+  cv_free(converter);
+  if (std::abs(zero) > 1e-12 * std::abs(one))
+    throw std::domain_error("\"" + unit + "\" has an offset (use kelvin for temperatures)");
+  return Conversion{one};
+}
+
+std::string dimension_name(const std::string& si_unit) {
+  static const std::map<std::string, std::string> names = {
+      {"m", "a length"},
+      {"s", "a time"},
+      {"Hz", "a frequency"},
+      {"s-1", "a rate"},
+      {"K", "a temperature"},
+      {"rad", "an angle"},
+      {"sr", "a solid angle"},
+      {"m2", "an area"},
+      {"m-1", "a spatial frequency (reciprocal length)"},
+      {"m/s", "a speed"},
+      {"W m-2", "an irradiance"},
+      {"J m-2", "an exposure (energy per area)"},
+      {"W m-2 sr-1", "a radiance"},
+      {"W m-2 m-1", "a spectral irradiance"},
+      {"W m-2 sr-1 m-1", "a spectral radiance"},
+      {"lx", "an illuminance"},
+      {"electron", "an electron count"},
+      {"electron/s", "an electron rate"},
+      {"1", "a dimensionless number"},
+  };
+  auto it = names.find(si_unit);
+  if (it != names.end()) return it->second;
+  return "a quantity in " + si_unit;
+}
+
+ParsedQuantity split_quantity(const std::string& text) {
+  const char* begin = text.c_str();
+  while (*begin == ' ' || *begin == '\t') ++begin;
+  char* end = nullptr;
+  const double number = std::strtod(begin, &end);
+  if (end == begin || !std::isfinite(number)) throw std::invalid_argument("no number");
+  std::string unit(end);
+  const auto first = unit.find_first_not_of(" \t");
+  const auto last = unit.find_last_not_of(" \t");
+  unit = first == std::string::npos ? std::string() : unit.substr(first, last - first + 1);
+  return ParsedQuantity{number, unit};
+}
+
+}  // namespace radchain::units

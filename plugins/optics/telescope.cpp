@@ -1,0 +1,96 @@
+// A telescope or objective: entrance pupil D with a central obscuration, transmittance (constant or a
+// curve) and focal length. A point object's pupil irradiance becomes image power
+//   P_λ = E_λ · π D²/4 · (1 - ε²) · τ            (Pan 2010 eq. 2, in spectral form)
+// and an extended scene's radiance becomes focal-plane irradiance
+//   E'_λ = π L_λ τ / (4 N²) = ¼ (D/f')² τ M_λ       (Kolobrodov 1996 eq. 5, M = π L; on axis, object at infinity)
+#include "radchain/plugin.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace {
+using namespace radchain;
+
+const Schema& schema() {
+  static const Schema s = {
+      quantity("aperture", "m", "15 cm").needed().above(0).at_most(100).described("entrance pupil diameter D"),
+      number("obscuration", "0.3").fallback("0").at_least(0).below(1)
+          .described("central obscuration, linear ratio ε (collecting area × (1 - ε²))"),
+      number("transmittance", "0.56").fallback("1").above(0).at_most(1)
+          .described("optical transmittance τ (in-band average; multiplies any transmittance_curve)"),
+      spectrum_file("transmittance_curve", "1", "optics_transmittance.csv")
+          .described("spectral transmittance τ(λ) (optional)"),
+      quantity("focal_length", "m", "832 mm").above(0).at_most(1000)
+          .described("effective focal length f' (needed for extended scenes and pixel geometry)"),
+  };
+  return s;
+}
+
+class Telescope final : public Stage {
+ public:
+  explicit Telescope(const Params& p)
+      : params_(p), aperture_(p.handle("aperture")), obscuration_(p.handle("obscuration")),
+        transmittance_(p.handle("transmittance")), focal_length_(p.handle("focal_length")) {}
+
+  void prepare(Context& c) override {
+    Radiation& signal = c.light.signal;
+    if (params_.has("transmittance_curve"))
+      signal.spectrum = signal.spectrum.product(params_.spectrum("transmittance_curve"), signal.spectrum.unit());
+    if (signal.form == RadiationForm::pupil_irradiance) {
+      signal.form = RadiationForm::focal_power;
+    } else if (signal.form == RadiationForm::scene_radiance) {
+      if (!params_.has("focal_length"))
+        params_.reject("aperture", "an extended scene needs focal_length as well (image irradiance depends on f/D)");
+      signal.form = RadiationForm::focal_irradiance;
+    } else {
+      c.refuse_form("a point irradiance or a scene radiance at the pupil", signal.form);
+    }
+    form_ = signal.form;
+    id_area_ = c.declare("collecting_area", "m2", "π D²/4 (1 - ε²)", "cm2");
+    id_aperture_ = c.declare("aperture", "m", "input D", "cm");
+    id_transmittance_ = c.declare("transmittance", "1", "input τ");
+    if (params_.has("focal_length")) {
+      id_focal_ = c.declare("focal_length", "m", "input f'", "mm");
+      id_f_number_ = c.declare("f_number", "1", "N = f'/D");
+    }
+    if (auto lux = c.find("target.illuminance"))
+      target_lux_ = *lux, id_flux_ = c.declare("luminous_flux", "lm", "Pan 2010 eq. (2): F = π D² E_t / 4", "lm");
+  }
+
+  void evaluate(Context& c) override {
+    const double d = *aperture_;
+    const double area = std::numbers::pi * d * d / 4.0 * (1.0 - *obscuration_ * *obscuration_);
+    c.results.set(id_area_, area);
+    c.results.set(id_aperture_, d);
+    c.results.set(id_transmittance_, *transmittance_);
+    if (form_ == RadiationForm::focal_power) {
+      c.light.signal.scale *= area * *transmittance_;
+    } else {
+      const double n = *focal_length_ / d;
+      c.light.signal.scale *= std::numbers::pi * (1.0 - *obscuration_ * *obscuration_) * *transmittance_ / (4.0 * n * n);
+    }
+    if (params_.has("focal_length")) {
+      c.results.set(id_focal_, *focal_length_);
+      c.results.set(id_f_number_, *focal_length_ / d);
+    }
+    if (target_lux_) c.results.set(id_flux_, std::numbers::pi * d * d / 4.0 * c.results.value(*target_lux_));
+  }
+
+ private:
+  const Params& params_;
+  const double *aperture_, *obscuration_, *transmittance_, *focal_length_;
+  RadiationForm form_ = RadiationForm::none;
+  std::optional<ResultId> target_lux_;
+  ResultId id_area_{}, id_aperture_{}, id_transmittance_{}, id_focal_{}, id_f_number_{}, id_flux_{};
+};
+
+const PluginInfo& info() {
+  static const PluginInfo i{plugin_abi_version, framework_version, Kind::optics, "telescope",
+                            "entrance pupil, obscuration, transmittance and focal length of an objective",
+                            "Pan 2010 eq. (2); Kolobrodov 1996 eq. (5)", &schema,
+                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<Telescope>(p); }};
+  return i;
+}
+}  // namespace
+
+RADCHAIN_PLUGIN(info)

@@ -1,0 +1,52 @@
+// A point object of given visual magnitude with the Sun's spectral shape (Pan 2010 eq. 1): its irradiance at
+// the pupil is E_t(λ) = 10^{0.4 (m_sun - m)} E_sun(λ), so its illuminance is 10^{0.4 (m_sun - m)} E_s.
+#include "radchain/physics/photometry.hpp"
+#include "radchain/plugin.hpp"
+
+namespace {
+using namespace radchain;
+
+const Schema& schema() {
+  static const Schema s = {
+      number("magnitude", "15.5").at_least(-30).at_most(40).fallback("15")
+          .described("apparent visual magnitude m (a [[solve]] unknown for the limiting magnitude)"),
+  };
+  return s;
+}
+
+class PointMagnitude final : public Stage {
+ public:
+  explicit PointMagnitude(const Params& p) : magnitude_(p.handle("magnitude")) {}
+
+  void prepare(Context& c) override {
+    if (c.light.illumination.empty()) c.refuse_form("a source spectrum", RadiationForm::none);
+    c.light.signal.form = RadiationForm::pupil_irradiance;
+    c.light.signal.spectrum = c.light.illumination;
+    sun_magnitude_ = c.require("source.visual_magnitude");
+    sun_illuminance_ = c.require("source.illuminance");
+    id_illuminance_ = c.declare("illuminance", "lx", "Pan 2010 eq. (1): E_t = 10^{0.4(m_sun - m)} E_s", "lx");
+    id_ratio_ = c.declare("irradiance_ratio", "1", "Pan 2010 eq. (1): E_t / E_s");
+  }
+
+  void evaluate(Context& c) override {
+    const double ratio = physics::magnitude_ratio(*magnitude_, c.results.value(sun_magnitude_));
+    c.light.signal.scale = c.light.illumination_scale * ratio;
+    c.results.set(id_ratio_, ratio);
+    c.results.set(id_illuminance_, ratio * c.results.value(sun_illuminance_));
+  }
+
+ private:
+  const double* magnitude_;
+  ResultId sun_magnitude_{}, sun_illuminance_{}, id_illuminance_{}, id_ratio_{};
+};
+
+const PluginInfo& info() {
+  static const PluginInfo i{plugin_abi_version, framework_version, Kind::target, "point_magnitude",
+                            "point object of given visual magnitude with the source's spectral shape",
+                            "Pan et al. 2010, Acta Optica Sinica 30(10), eq. (1)", &schema,
+                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<PointMagnitude>(p); }};
+  return i;
+}
+}  // namespace
+
+RADCHAIN_PLUGIN(info)
