@@ -24,7 +24,8 @@ function(radchain_add_plugin)
     OUTPUT_NAME ${ARG_NAME}
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON
-    LIBRARY_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/plugins/${ARG_KIND}")
+    LIBRARY_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/plugins/${ARG_KIND}"
+    INSTALL_RPATH "$ORIGIN/../../..")  # <prefix>/lib/radchain/plugins/<kind>/ -> <prefix>/lib
   if(DEFINED RADCHAIN_INSTALL_PLUGINDIR)
     install(TARGETS ${ARG_NAME} LIBRARY DESTINATION "${RADCHAIN_INSTALL_PLUGINDIR}/${ARG_KIND}")
   endif()

@@ -4,6 +4,7 @@
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
 #include "radchain/report.hpp"
+#include "radchain/units.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -102,14 +103,11 @@ int catalogue(const std::vector<std::string>& inputs, const std::vector<Override
       const ResultInfo* info = nullptr;
       for (const auto& r : report.results)
         if (r.name == e.spec.result) info = &r;
+      // Show the computed value in the unit the printed reference was written in.
       double factor = info->display_factor;
       std::string unit = info->display_unit == "1" ? "" : info->display_unit;
       if (!e.spec.display_unit.empty()) {
-        factor = e.spec.value_si != 0 ? 0 : factor;
-        factor = 1.0;
-        // show in the unit the reference was written in
-        const double written = std::stod(e.spec.as_written);
-        factor = e.spec.value_si != 0 ? written / e.spec.value_si : 1.0;
+        factor = 1.0 / units::conversion(e.spec.display_unit, info->si_unit).factor;
         unit = e.spec.display_unit;
       }
       const double rel = e.spec.value_si != 0 ? (e.computed_si - e.spec.value_si) / std::abs(e.spec.value_si) : 0.0;

@@ -16,7 +16,9 @@ namespace fs = std::filesystem;
 
 ParamSpec quantity(std::string key, std::string si_unit, std::string example) {
   ParamSpec p;
-  p.key = std::move(key), p.type = ParamType::quantity, p.si_unit = std::move(si_unit), p.example = std::move(example);
+  // Stored as written in a sensor file (a TOML string), like the other kinds' examples: "\"15 cm\"".
+  p.key = std::move(key), p.type = ParamType::quantity, p.si_unit = std::move(si_unit);
+  p.example = "\"" + example + "\"";
   return p;
 }
 ParamSpec number(std::string key, std::string example) {

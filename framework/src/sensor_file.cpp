@@ -54,8 +54,10 @@ void require_table(const ConfigValue& value, const std::string& name) {
 
 std::string display_unit_of_example(const ParamSpec& spec) {
   if (spec.type != ParamType::quantity) return {};
+  std::string example = spec.example;  // written as a TOML string: "\"15 cm\""
+  if (example.size() >= 2 && example.front() == '"' && example.back() == '"') example = example.substr(1, example.size() - 2);
   try {
-    return units::split_quantity(spec.example).unit;
+    return units::split_quantity(example).unit;
   } catch (...) {
     return {};
   }

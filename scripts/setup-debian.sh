@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages radchain needs, when they are missing. Idempotent; works as root or
+# through sudo; never touches the network when everything is already installed.
+set -euo pipefail
+
+packages=(
+  g++ make cmake pkg-config git ca-certificates
+  libboost-dev            # Boost.DLL (plugins), Boost.Math (roots, distributions); header-only in 1.74
+  libtomlplusplus-dev     # sensor files
+  libeigen3-dev           # spectra
+  libudunits2-dev         # unit strings
+  libfmt-dev libcli11-dev nlohmann-json3-dev
+  libtbb-dev              # thread pool for sweeps and catalogues
+  libgtest-dev libgmock-dev libbenchmark-dev
+  gnuplot-nox             # plots of sweeps and MTF curves
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+if [ "$(id -u)" -eq 0 ]; then
+  as_root=()
+elif command -v sudo >/dev/null 2>&1; then
+  as_root=(sudo)
+else
+  echo "radchain setup: these Debian packages are missing and installing them needs root or sudo: ${missing[*]}" >&2
+  exit 2
+fi
+echo "radchain setup: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -q
+"${as_root[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
