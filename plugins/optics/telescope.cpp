@@ -19,7 +19,7 @@ const Schema& schema() {
       number("transmittance", "0.56").fallback("1").above(0).at_most(1)
           .described("optical transmittance τ (in-band average; multiplies any transmittance_curve)"),
       spectrum_file("transmittance_curve", "1", "optics_transmittance.csv")
-          .described("spectral transmittance τ(λ) (optional)"),
+          .described("spectral transmittance τ(λ), multiplied into the signal spectrum"),
       quantity("focal_length", "m", "832 mm").above(0).at_most(1000)
           .described("effective focal length f' (needed for extended scenes and pixel geometry)"),
   };
