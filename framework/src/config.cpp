@@ -92,7 +92,12 @@ std::string ConfigValue::as_toml() const {
   switch (type) {
     case Type::string: return "\"" + string_value + "\"";
     case Type::integer: return std::to_string(integer_value);
-    case Type::floating: return fmt::format("{}", floating_value);
+    case Type::floating: {
+      // As written: 12.0 stays a float in messages ("adc_bits = 12.0: expected an integer"), not "12".
+      std::string text = fmt::format("{}", floating_value);
+      if (text.find_first_of(".eEni") == std::string::npos) text += ".0";
+      return text;
+    }
     case Type::boolean: return boolean_value ? "true" : "false";
     case Type::array: {
       std::vector<std::string> parts;

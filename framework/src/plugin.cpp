@@ -11,6 +11,7 @@ void Stage::prepare(Context&) {}
 
 std::string to_string(Kind kind) {
   switch (kind) {
+    case Kind::platform: return "platform";
     case Kind::source: return "source";
     case Kind::target: return "target";
     case Kind::atmosphere: return "atmosphere";
@@ -23,6 +24,7 @@ std::string to_string(Kind kind) {
 
 std::string kind_directory(Kind kind) {
   switch (kind) {
+    case Kind::platform: return "platforms";
     case Kind::source: return "sources";
     case Kind::target: return "targets";
     case Kind::atmosphere: return "atmospheres";
@@ -34,7 +36,7 @@ std::string kind_directory(Kind kind) {
 }
 
 std::optional<Kind> kind_from_directory(const std::string& directory) {
-  for (Kind k : {Kind::source, Kind::target, Kind::atmosphere, Kind::optics, Kind::detector, Kind::criterion})
+  for (Kind k : {Kind::platform, Kind::source, Kind::target, Kind::atmosphere, Kind::optics, Kind::detector, Kind::criterion})
     if (kind_directory(k) == directory) return k;
   return std::nullopt;
 }

@@ -13,11 +13,18 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
 namespace radchain {
 namespace fs = std::filesystem;
+
+namespace {
+std::string with_article(const std::string& noun) {
+  return (noun.empty() || std::string("aeiou").find(noun.front()) == std::string::npos ? "a " : "an ") + noun;
+}
+}  // namespace
 
 struct PluginHost::Impl {
   std::deque<boost::dll::shared_library> libraries;  // never unloaded
@@ -132,15 +139,22 @@ const PluginInfo& PluginHost::load_file(const std::string& path) {
 
 const PluginInfo& PluginHost::load(Kind kind, const std::string& name) {
   std::vector<std::string> available;
+  std::optional<Kind> other_kind;  // the name exists, but for another section
   for (const auto& file : discover()) {
-    if (file.kind != kind) continue;
+    if (file.kind != kind) {
+      if (file.name == name) other_kind = file.kind;
+      continue;
+    }
     if (file.name == name) return load_file(file.path);
     available.push_back(file.name);
   }
   const std::string near = nearest_match(name, available);
-  throw InputError({}, "", "",
-                   fmt::format("unknown {} plugin \"{}\"{}; available: {} (search path: {})", to_string(kind), name,
-                               near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+  const std::string hint = other_kind ? fmt::format(" (\"{}\" is {} plugin)", name, with_article(to_string(*other_kind)))
+                           : near.empty() ? ""
+                                          : " (did you mean \"" + near + "\"?)";
+  // The subject names the plugin; a caller that already shows the name uses problem() alone.
+  throw InputError({}, "", fmt::format("plugin \"{}\"", name),
+                   fmt::format("unknown {} plugin{}; available: {} (search path: {})", to_string(kind), hint,
                                available.empty() ? "none" : join(available), join(search_path_, ":")));
 }
 

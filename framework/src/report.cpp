@@ -14,9 +14,10 @@ std::string format_value(double value_si, const ResultInfo& info) {
   return fmt::format("{:.6g}", v);
 }
 
-static std::string display_of_expectation(const ExpectationOutcome& e, const ResultInfo* info) {
-  (void)info;
-  return e.spec.as_written;
+// "206 mm" or, for an erratum, "206 mm (follows: 65.0 mm)".
+static std::string display_of_expectation(const ExpectationOutcome& e) {
+  if (!e.spec.follows_si) return e.spec.as_written;
+  return e.spec.as_written + " (follows: " + e.spec.follows_as_written + ")";
 }
 
 std::string format_report_text(const Report& report) {
@@ -39,8 +40,13 @@ std::string format_report_text(const Report& report) {
   if (!report.solves.empty()) {
     out += "solves:\n";
     for (const auto& s : report.solves) {
-      out += fmt::format("  {} from criterion \"{}\": {}\n", s.spec.unknown, s.spec.criterion,
-                         s.converged ? fmt::format("converged in {} evaluations", s.iterations) : "FAILED: " + s.message);
+      std::string roots;
+      if (s.roots.size() > 1)
+        for (const auto& [name, value] : s.roots) roots += fmt::format("; {} alone gives {:.6g}", name, value);
+      out += fmt::format("  {} from {}: {}{}\n", s.spec.unknown, join(s.spec.criteria, " + "),
+                         s.converged ? fmt::format("converged in {} evaluations, binding criterion \"{}\"", s.iterations, s.binding)
+                                     : "FAILED: " + s.message,
+                         roots);
     }
   }
   if (!report.expectations.empty()) {
@@ -64,7 +70,7 @@ std::string format_report_text(const Report& report) {
         delta = fmt::format("{:+.3g} ({:+.2f} %)", d, 100 * rel);
       }
       out += fmt::format("  {:<4} {:<40} printed {:<14} computed {:<18} delta {:<22} {}\n", e.passed ? "ok" : "FAIL",
-                         e.spec.result, display_of_expectation(e, info), computed, delta, e.spec.source);
+                         e.spec.result, display_of_expectation(e), computed, delta, e.spec.source);
     }
   }
   return out;
@@ -90,11 +96,12 @@ std::string format_report_json(const Report& report) {
   }
   auto& solves = j["solves"] = nlohmann::ordered_json::array();
   for (const auto& s : report.solves)
-    solves.push_back({{"unknown", s.spec.unknown}, {"criterion", s.spec.criterion}, {"value_si", s.value_si},
+    solves.push_back({{"unknown", s.spec.unknown}, {"criteria", s.spec.criteria}, {"binding", s.binding}, {"value_si", s.value_si},
                       {"converged", s.converged}, {"evaluations", s.iterations}, {"message", s.message}});
   auto& expectations = j["expected"] = nlohmann::ordered_json::array();
   for (const auto& e : report.expectations)
     expectations.push_back({{"result", e.spec.result}, {"printed", e.spec.as_written}, {"printed_si", e.spec.value_si},
+                            {"follows_si", e.spec.follows_si ? nlohmann::ordered_json(*e.spec.follows_si) : nlohmann::ordered_json()},
                             {"computed_si", e.computed_si}, {"tolerance_si", e.spec.tolerance_si},
                             {"rel_tolerance", e.spec.rel_tolerance}, {"passed", e.passed}, {"source", e.spec.source}});
   j["passed"] = report.all_passed();

@@ -214,7 +214,10 @@ void assign_param(Params& params, Params::Entry& entry, const ConfigValue& value
       if (value.type != ConfigValue::Type::string) throw fail(spec.expected_text());
       bool ok = false;
       for (const auto& c : spec.choices) ok = ok || c == value.string_value;
-      if (!ok) throw fail(spec.expected_text());
+      if (!ok) {
+        const std::string near = nearest_match(value.string_value, spec.choices);
+        throw fail(spec.expected_text() + (near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+      }
       entry.text = value.string_value;
       break;
     }

@@ -104,6 +104,16 @@ Eigen::ArrayXd union_grid(std::initializer_list<const Spectrum*> spectra, double
 
 double band_integral(std::initializer_list<const Spectrum*> spectra, double lo_m, double hi_m,
                      const std::function<double(double)>& weight) {
+  // A zero-extrapolated spectrum is 0 outside its grid, and so is the product: integrate over the overlap
+  // only. Otherwise the trapezoid from a node outside the grid to the grid's first point would ramp from 0
+  // to the end value and add area the function does not have (a spectrum of 1 on [1, 2] integrated over
+  // [0, 3] gave 2 instead of 1).
+  for (const Spectrum* s : spectra) {
+    if (s->extrapolation() != Extrapolation::zero) continue;
+    if (s->empty()) return 0.0;
+    lo_m = std::max(lo_m, s->min_wavelength_m());
+    hi_m = std::min(hi_m, s->max_wavelength_m());
+  }
   if (!(hi_m > lo_m)) return 0.0;
   const Eigen::ArrayXd grid = union_grid(spectra, lo_m, hi_m);
   Eigen::ArrayXd f = Eigen::ArrayXd::Ones(grid.size());

@@ -98,9 +98,12 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
       out.value_column = trim(fields[1]);
       const std::string unit = unit_of_column(out.value_column);
       const bool dimensionless_expected = units::dimension_of(expected_si_unit) == "1";
-      if (unit.empty() && !dimensionless_expected)
+      if (unit.empty() && !dimensionless_expected) {
+        std::string example = out.value_column + "_" + expected_si_unit;  // the column named with its SI unit
+        for (char& c : example) c = c == ' ' ? '_' : c;
         throw fail(line_number, "no unit in the header's value column \"" + out.value_column + "\": expected " +
-                                    units::dimension_name(expected_si_unit) + ", e.g. spectral_irradiance_W_m-2_nm-1");
+                                    units::dimension_name(expected_si_unit) + ", e.g. " + example);
+      }
       try {
         value_factor = units::conversion(unit.empty() ? "1" : unit, expected_si_unit).factor;
       } catch (const std::exception&) {

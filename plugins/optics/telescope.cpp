@@ -46,6 +46,13 @@ class Telescope final : public Stage {
       c.refuse_form("a point irradiance or a scene radiance at the pupil", signal.form);
     }
     form_ = signal.form;
+    // A scene background (ground, sky) goes through the same optics.
+    Radiation& background = c.light.background;
+    if (background.form == RadiationForm::scene_radiance && form_ == RadiationForm::focal_irradiance) {
+      if (params_.has("transmittance_curve"))
+        background.spectrum = background.spectrum.product(params_.spectrum("transmittance_curve"), background.spectrum.unit());
+      background.form = RadiationForm::focal_irradiance;
+    }
     id_area_ = c.declare("collecting_area", "m2", "π D²/4 (1 - ε²)", "cm2");
     id_aperture_ = c.declare("aperture", "m", "input D", "cm");
     id_transmittance_ = c.declare("transmittance", "1", "input τ");
@@ -67,7 +74,9 @@ class Telescope final : public Stage {
       c.light.signal.scale *= area * *transmittance_;
     } else {
       const double n = *focal_length_ / d;
-      c.light.signal.scale *= std::numbers::pi * (1.0 - *obscuration_ * *obscuration_) * *transmittance_ / (4.0 * n * n);
+      const double radiance_to_irradiance = std::numbers::pi * (1.0 - *obscuration_ * *obscuration_) * *transmittance_ / (4.0 * n * n);
+      c.light.signal.scale *= radiance_to_irradiance;
+      if (c.light.background.form == RadiationForm::focal_irradiance) c.light.background.scale *= radiance_to_irradiance;
     }
     if (params_.has("focal_length")) {
       c.results.set(id_focal_, *focal_length_);

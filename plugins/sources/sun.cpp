@@ -1,7 +1,10 @@
 // The Sun outside the atmosphere: a tabulated AM0 spectrum (ASTM E-490 by default, Wehrli 1985 selectable)
 // or a Planck model, at a given distance. Publishes its total irradiance and its illuminance (computed from
-// the spectrum with V(λ), never typed in unless pinned as a paper value).
+// the spectrum with V(λ), never typed in unless pinned as a paper value). Given a working band λ1..λ2 it also
+// publishes z(λ1), z(λ2) (the fraction of the spectrum's total below λ) and the in-band irradiance
+// E'_s = E_s [z(λ2) - z(λ1)] (Kolobrodov 1996, after Pavlov 1974), with the printed z as optional overrides.
 #include "radchain/constants.hpp"
+#include "radchain/physics/band.hpp"
 #include "radchain/physics/photometry.hpp"
 #include "radchain/physics/planck.hpp"
 #include "radchain/plugin.hpp"
@@ -28,6 +31,14 @@ const Schema& schema() {
           .described("the Sun's apparent visual magnitude at 1 AU (Pan 2010 uses -26.73)"),
       quantity("illuminance", "lx", "1.3e5 lx").above(0).affects_spectrum()
           .described("paper value: pin the solar illuminance at 1 AU (the spectrum is scaled to it)"),
+      quantity("band_min", "m", "0.5 um").above(0).affects_spectrum()
+          .described("working band lower limit λ1: publish z(λ1) and the in-band irradiance (with band_max)"),
+      quantity("band_max", "m", "0.76 um").above(0).affects_spectrum()
+          .described("working band upper limit λ2 (with band_min)"),
+      number("z_band_min", "0.236").at_least(0).at_most(1).affects_spectrum()
+          .described("paper value: pin z(λ1), the fraction of the Sun's radiation below λ1 (Kolobrodov 1996: 0.236)"),
+      number("z_band_max", "0.58").at_least(0).at_most(1).affects_spectrum()
+          .described("paper value: pin z(λ2) (Kolobrodov 1996: 0.58)"),
   };
   return s;
 }
@@ -38,6 +49,11 @@ class Sun final : public Stage {
       : params_(p), distance_(p.handle("distance")), magnitude_(p.handle("visual_magnitude")) {
     if (p.text("model") == "planck" && !p.has("total_irradiance"))
       p.reject("model", "model = \"planck\" needs total_irradiance, e.g. \"1361 W/m2\"");
+    if (p.has("band_min") != p.has("band_max"))
+      p.reject(p.has("band_min") ? "band_min" : "band_max", "band_min and band_max go together (the working band λ1..λ2)");
+    if (p.has("band_min") && !(p.get("band_max") > p.get("band_min"))) p.reject("band_max", "must be larger than band_min");
+    if ((p.has("z_band_min") || p.has("z_band_max")) && !p.has("band_min"))
+      p.reject(p.has("z_band_min") ? "z_band_min" : "z_band_max", "a pinned z needs the working band (band_min, band_max)");
   }
 
   void prepare(Context& c) override {
@@ -69,6 +85,38 @@ class Sun final : public Stage {
     id_efficacy_ = c.declare("luminous_efficacy", "lm W-1", "E_v / E_e", "lm W-1");
     id_magnitude_ = c.declare("visual_magnitude", "1", "Pan 2010 eq. (1) reference m_sun");
     id_distance_ = c.declare("distance", "m", "input", "AU");
+    has_band_ = params_.has("band_min");
+    if (has_band_) prepare_band(c, spectrum);
+  }
+
+  // With pinned z values the spectrum is rescaled inside the band so that every later stage integrating over
+  // it sees E'_s = E_s [z(λ2) - z(λ1)] (the paper's number), while its shape is kept.
+  static Spectrum with_band_total(const Spectrum& spectrum, double lo, double hi, double band_total) {
+    const double factor = band_total / spectrum.integral(lo, hi);
+    return Spectrum::sampled(spectrum.wavelength_m(), [&](double l) { return spectrum(l) * (l >= lo && l <= hi ? factor : 1.0); },
+                             spectrum.unit(), spectrum.extrapolation());
+  }
+
+  // Kolobrodov 1996 (after Pavlov 1974): E'_s = E_s [z(λ2) - z(λ1)], z(λ) the fraction of the Sun's total
+  // radiation below λ, computed from the spectrum unless pinned to a printed value.
+  void prepare_band(Context& c, const Spectrum& spectrum) {
+    const double lo = params_.get("band_min"), hi = params_.get("band_max");
+    z_computed_[0] = physics::fraction_below(spectrum, lo);
+    z_computed_[1] = physics::fraction_below(spectrum, hi);
+    const char* keys[2] = {"z_band_min", "z_band_max"};
+    for (int i = 0; i < 2; ++i) {
+      const bool pinned = pinned_z_[i] = params_.has(keys[i]);
+      z_[i] = pinned ? params_.get(keys[i]) : z_computed_[i];
+      id_z_[i] = c.declare(keys[i], "1", std::string(i == 0 ? "z(λ1)" : "z(λ2)") +
+                                             (pinned ? " (pinned paper value)" : " = ∫_0^λ E_λ dλ / ∫ E_λ dλ"));
+      if (pinned)
+        id_z_computed_[i] = c.declare(std::string(keys[i]) + "_computed", "1", "∫_0^λ E_λ dλ / ∫ E_λ dλ of the spectrum");
+    }
+    id_band_ = c.declare("band_irradiance", "W m-2", "Kolobrodov 1996: E'_s = E_s [z(λ2) - z(λ1)]", "W/cm2");
+    c.light.report_band_min_m = lo;
+    c.light.report_band_max_m = hi;
+    if (pinned_z_[0] || pinned_z_[1])
+      c.light.illumination = with_band_total(c.light.illumination, lo, hi, total_ * (z_[1] - z_[0]));
   }
 
   void evaluate(Context& c) override {
@@ -80,6 +128,13 @@ class Sun final : public Stage {
     c.results.set(id_efficacy_, illuminance_ / total_);
     c.results.set(id_magnitude_, *magnitude_);
     c.results.set(id_distance_, *distance_);
+    if (has_band_) {
+      for (int i = 0; i < 2; ++i) {
+        c.results.set(id_z_[i], z_[i]);
+        if (pinned_z_[i]) c.results.set(id_z_computed_[i], z_computed_[i]);
+      }
+      c.results.set(id_band_, total_ * inverse_square * (z_[1] - z_[0]));
+    }
   }
 
  private:
@@ -88,6 +143,9 @@ class Sun final : public Stage {
   const double* magnitude_;
   double total_ = 0, illuminance_ = 0, computed_illuminance_ = 0;
   ResultId id_total_{}, id_illuminance_{}, id_illuminance_computed_{}, id_efficacy_{}, id_magnitude_{}, id_distance_{};
+  bool has_band_ = false, pinned_z_[2] = {false, false};
+  double z_[2] = {0, 0}, z_computed_[2] = {0, 0};
+  ResultId id_z_[2]{}, id_z_computed_[2]{}, id_band_{};
 };
 
 const PluginInfo& info() {

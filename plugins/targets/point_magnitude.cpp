@@ -22,6 +22,8 @@ class PointMagnitude final : public Stage {
     if (c.light.illumination.empty()) c.refuse_form("a source spectrum", RadiationForm::none);
     c.light.signal.form = RadiationForm::pupil_irradiance;
     c.light.signal.spectrum = c.light.illumination;
+    if (!c.light.up_path_transmittance.empty())  // seen through an atmosphere (ground-based viewing)
+      c.light.signal.spectrum = c.light.signal.spectrum.product(c.light.up_path_transmittance, c.light.signal.spectrum.unit());
     sun_magnitude_ = c.require("source.visual_magnitude");
     sun_illuminance_ = c.require("source.illuminance");
     id_illuminance_ = c.declare("illuminance", "lx", "Pan 2010 eq. (1): E_t = 10^{0.4(m_sun - m)} E_s", "lx");
@@ -30,7 +32,7 @@ class PointMagnitude final : public Stage {
 
   void evaluate(Context& c) override {
     const double ratio = physics::magnitude_ratio(*magnitude_, c.results.value(sun_magnitude_));
-    c.light.signal.scale = c.light.illumination_scale * ratio;
+    c.light.signal.scale = c.light.illumination_scale * ratio * c.light.up_path_scale;
     c.results.set(id_ratio_, ratio);
     c.results.set(id_illuminance_, ratio * c.results.value(sun_illuminance_));
   }

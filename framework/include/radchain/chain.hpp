@@ -19,26 +19,34 @@ namespace radchain {
 
 struct StageSlot {
   std::string section;  // "optics", "criteria.detection"
+  std::string plugin;   // info->name
   const PluginInfo* info = nullptr;
   std::unique_ptr<Params> params;
   std::unique_ptr<Stage> stage;
 };
 
 // [[solve]] unknown = "optics.aperture"  criterion = "energy"  bracket = ["1 cm", "2 m"]
+// With several criteria (criterion = ["energy", "matching"]) each margin is driven to zero in turn, and the
+// value at which every listed margin is ≥ 0 is kept: that criterion binds.
 struct SolveSpec {
-  std::string unknown;    // "<section>.<parameter>", a quantity or number parameter
-  std::string criterion;  // the name under [criteria.<name>]; its result "criteria.<name>.margin" is driven to 0
+  std::string unknown;                  // "<section>.<parameter>", a quantity or number parameter
+  std::vector<std::string> criteria;    // names under [criteria.<name>]; "criteria.<name>.margin" is driven to 0
   double lo = 0, hi = 0;  // bracket in SI; from the file, else the parameter's range
   SourceLocation where;
 };
 
 // [expected] "optics.focal_length" = { value = "832 mm", tolerance = "1 mm", source = "Kolobrodov 1996, p. 4" }
+//            "optics.aperture" = { value = "206 mm", follows = "65.0 mm", tolerance = "0.5 mm", source = "..." }
 struct Expectation {
   std::string result;
   double value_si = 0;
   double tolerance_si = 0;      // absolute
   double rel_tolerance = 0;     // relative (either or both)
   std::string as_written;       // "832 mm"
+  // An erratum: the value that follows from the paper's own formula and inputs (docs/ explain the difference).
+  // When given, the check is against it; the printed value is still shown beside it.
+  std::optional<double> follows_si;
+  std::string follows_as_written;
   std::string display_unit;     // the unit it was written in ("" = the result's display unit)
   std::string source;
   SourceLocation where;
@@ -50,6 +58,8 @@ struct SolveOutcome {
   int iterations = 0;
   bool converged = false;
   std::string message;  // why not, when not
+  std::string binding;  // the criterion whose root was kept
+  std::vector<std::pair<std::string, double>> roots;  // each criterion's own root (SI)
 };
 
 struct ExpectationOutcome {

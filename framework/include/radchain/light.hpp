@@ -31,6 +31,14 @@ struct Light {
   Radiation signal;
   // Light that is present whether or not the object is (sky, ground background); form none when absent.
   Radiation background;
+  // Set by the atmosphere for the target: transmittance from the target to the sensor (spectral shape, empty
+  // = 1, times a scalar) and path radiance (W m^-2 sr^-1 m^-1, empty = none).
+  Spectrum up_path_transmittance;
+  double up_path_scale = 1.0;
+  Spectrum path_radiance;
+  // The working band in which in-band totals are reported (E's, E0, ΔM); 0 = not set.
+  double report_band_min_m = 0.0, report_band_max_m = 0.0;
+  bool has_report_band() const { return report_band_max_m > report_band_min_m; }
 };
 
 }  // namespace radchain

@@ -16,7 +16,7 @@
 
 namespace radchain {
 
-enum class Kind { source, target, atmosphere, optics, detector, criterion };
+enum class Kind { platform, source, target, atmosphere, optics, detector, criterion };
 std::string to_string(Kind kind);           // "source"
 std::string kind_directory(Kind kind);      // "sources"
 std::optional<Kind> kind_from_directory(const std::string& directory);
@@ -26,8 +26,8 @@ class Context {
  public:
   Results& results;
   Light& light;
-  std::string section;  // the stage being run: "optics", "criteria.detection"
-  std::string plugin;
+  const std::string& section;  // the stage being run: "optics", "criteria.detection"
+  const std::string& plugin;   // (references: a Context is built per stage call and must cost nothing)
 
   // Declares "<section>.<name>".
   ResultId declare(const std::string& name, const std::string& si_unit, const std::string& equation,

@@ -26,8 +26,8 @@ struct ParamSpec {
   std::string key;
   ParamType type = ParamType::number;
   std::string si_unit;  // quantity: SI unit of the stored value ("m"); spectrum: unit of its values ("1")
-  std::string example;  // a valid value as written in a sensor file: "15 cm"
-  std::optional<std::string> default_value;  // written like `example`; none + !required = optional
+  std::string example;  // a valid value as TOML text in a sensor file, quotes included: "\"15 cm\"", 0.27
+  std::optional<std::string> default_value;  // the value without TOML quotes ("0 e-/s"); none + !required = optional
   bool required = false;
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();

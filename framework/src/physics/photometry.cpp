@@ -1,6 +1,8 @@
 #include "radchain/physics/photometry.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace radchain::physics {
 
@@ -13,5 +15,33 @@ double luminous(const Spectrum& spectral_radiometric, const Spectrum& v_lambda, 
 double magnitude_ratio(double magnitude, double sun_magnitude) { return std::pow(10.0, 0.4 * (sun_magnitude - magnitude)); }
 
 double magnitude_from_ratio(double ratio, double sun_magnitude) { return sun_magnitude - 2.5 * std::log10(ratio); }
+
+double radiometric_scale_from_luminous(double luminous_value, const Spectrum& relative_distribution,
+                                       const Spectrum& v_lambda, double km_lm_W) {
+  // Pan 2010 eqs. (3)-(5): F = ∫ K(λ) Φ_λmax Φr(λ) dλ with K(λ) = K_m V(λ).
+  const double luminous_per_unit = luminous(relative_distribution, v_lambda, km_lm_W);
+  if (!(luminous_per_unit > 0))
+    throw std::invalid_argument("radiometric_scale_from_luminous: the distribution has no light where V(λ) > 0");
+  return luminous_value / luminous_per_unit;
+}
+
+Spectrum radiometric_from_luminous(double luminous_value, const Spectrum& relative_distribution,
+                                   const Spectrum& v_lambda, std::string unit, double km_lm_W) {
+  return relative_distribution.scaled(
+      radiometric_scale_from_luminous(luminous_value, relative_distribution, v_lambda, km_lm_W), std::move(unit));
+}
+
+double photon_rate(const Spectrum& spectral_radiometric, double lo_m, double hi_m, const Spectrum* quantum_efficiency) {
+  // Pan 2010 eq. (6): n(λ) = Φ_λ λ/(hc); eq. (7): n_e = ∫ n(λ) η_λ dλ.
+  auto photons = [](double l) { return photons_per_joule(l); };
+  if (quantum_efficiency) return band_integral({&spectral_radiometric, quantum_efficiency}, lo_m, hi_m, photons);
+  return band_integral({&spectral_radiometric}, lo_m, hi_m, photons);
+}
+
+double photons_per_lumen(const Spectrum& relative_distribution, const Spectrum& v_lambda, double lo_m, double hi_m,
+                         const Spectrum* quantum_efficiency, double km_lm_W) {
+  return radiometric_scale_from_luminous(1.0, relative_distribution, v_lambda, km_lm_W) *
+         photon_rate(relative_distribution, lo_m, hi_m, quantum_efficiency);
+}
 
 }  // namespace radchain::physics

@@ -1,0 +1,58 @@
+// An atmosphere given as a spectral transmittance table τ(λ) for one vertical pass (e.g. MODTRAN), scaled to an
+// airmass X by Bouguer-Lambert-Beer: τ_X(λ) = τ(λ)^X. Crossed on the way down (unless down_path = false) and up.
+// (Named tabulated_transmittance, not tabulated: plugin names are global — CMake targets and .so files.)
+#include "radchain/plugin.hpp"
+
+#include <cmath>
+
+namespace {
+using namespace radchain;
+
+const Schema& schema() {
+  static const Schema s = {
+      spectrum_file("table", "1", "atmosphere_modtran_cerro_pachon_airmass1.0.csv")
+          .fallback("atmosphere_modtran_cerro_pachon_airmass1.0.csv").described("transmittance τ(λ) of one vertical pass"),
+      number("airmass", "1").fallback("1").at_least(1).at_most(40).affects_spectrum()
+          .described("relative air mass X of each pass (τ^X, Bouguer-Lambert-Beer)"),
+      flag("down_path").fallback("true")
+          .described("the source's light crosses the atmosphere before reaching the target (false for objects in space)"),
+  };
+  return s;
+}
+
+class TabulatedTransmittance final : public Stage {
+ public:
+  explicit TabulatedTransmittance(const Params& p) : params_(p) {}
+
+  void prepare(Context& c) override {
+    const Spectrum& table = params_.spectrum("table");
+    const double x = params_.get("airmass");
+    Eigen::ArrayXd tau = table.value().max(0.0).pow(x);
+    const Spectrum path(table.wavelength_m(), tau, "1", Extrapolation::zero);
+    if (params_.flag("down_path")) c.light.illumination = c.light.illumination.product(path, c.light.illumination.unit());
+    c.light.up_path_transmittance =
+        c.light.up_path_transmittance.empty() ? path : c.light.up_path_transmittance.product(path, "1");
+    id_tau_ = c.declare("transmittance", "1", "band mean of τ(λ)^X over the reporting band (or 400-700 nm)");
+    const double lo = c.light.has_report_band() ? c.light.report_band_min_m : 400e-9;
+    const double hi = c.light.has_report_band() ? c.light.report_band_max_m : 700e-9;
+    mean_tau_ = path.integral(lo, hi) / (hi - lo);
+  }
+
+  void evaluate(Context& c) override { c.results.set(id_tau_, mean_tau_); }
+
+ private:
+  const Params& params_;
+  double mean_tau_ = 1;
+  ResultId id_tau_{};
+};
+
+const PluginInfo& info() {
+  static const PluginInfo i{plugin_abi_version, framework_version, Kind::atmosphere, "tabulated_transmittance",
+                            "spectral atmospheric transmittance table, airmass-scaled, down and up paths",
+                            "Bouguer-Lambert-Beer law; table provenance in spectra/", &schema,
+                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<TabulatedTransmittance>(p); }};
+  return i;
+}
+}  // namespace
+
+RADCHAIN_PLUGIN(info)
