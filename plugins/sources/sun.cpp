@@ -9,7 +9,9 @@
 #include "radchain/physics/planck.hpp"
 #include "radchain/plugin.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace {
 using namespace radchain;
@@ -92,8 +94,16 @@ class Sun final : public Stage {
   // With pinned z values the spectrum is rescaled inside the band so that every later stage integrating over
   // it sees E'_s = E_s [z(λ2) - z(λ1)] (the paper's number), while its shape is kept.
   static Spectrum with_band_total(const Spectrum& spectrum, double lo, double hi, double band_total) {
+    // The band limits become grid nodes first (this leaves the piecewise-linear function unchanged), so scaling
+    // every node in [lo, hi] scales the in-band integral exactly.
+    const Eigen::ArrayXd grid = union_grid({&spectrum}, spectrum.min_wavelength_m(), spectrum.max_wavelength_m());
+    std::vector<double> nodes(grid.data(), grid.data() + grid.size());
+    for (double limit : {lo, hi})
+      if (std::find(nodes.begin(), nodes.end(), limit) == nodes.end()) nodes.push_back(limit);
+    std::sort(nodes.begin(), nodes.end());
+    const Eigen::ArrayXd refined = Eigen::Map<Eigen::ArrayXd>(nodes.data(), static_cast<Eigen::Index>(nodes.size()));
     const double factor = band_total / spectrum.integral(lo, hi);
-    return Spectrum::sampled(spectrum.wavelength_m(), [&](double l) { return spectrum(l) * (l >= lo && l <= hi ? factor : 1.0); },
+    return Spectrum::sampled(refined, [&](double l) { return spectrum(l) * (l >= lo && l <= hi ? factor : 1.0); },
                              spectrum.unit(), spectrum.extrapolation());
   }
 
