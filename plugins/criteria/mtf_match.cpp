@@ -36,6 +36,7 @@ class MtfMatch final : public Stage {
     focal_ = c.require("optics.focal_length");
     element_ = c.require("detector.element_size_for_mtf");
     nu_half_ = c.require("detector.nu_half_contrast");
+    id_wavelength_ = c.declare("wavelength", "m", "input λ", "um");
     id_coefficient_ = c.declare("eta_coefficient", "1", "2·1.218·u (eq. 12)");
     id_eta_ = c.declare("required_quality", "1", "Kolobrodov 1996 eq. (12): η = k (f'/D) λ / V_D");
     id_margin_ = c.declare("margin", "1", "η_max / η − 1 (≥ 0: the objective can be matched)");
@@ -50,6 +51,7 @@ class MtfMatch final : public Stage {
     const double n = f / d;
     const double eta = physics::kolobrodov_eta(*wavelength_, n, vd, coefficient_);
     const double nu = c.results.value(nu_half_);
+    c.results.set(id_wavelength_, *wavelength_);
     c.results.set(id_coefficient_, coefficient_);
     c.results.set(id_eta_, eta);
     c.results.set(id_margin_, *max_quality_ / eta - 1.0);
@@ -63,7 +65,7 @@ class MtfMatch final : public Stage {
   const double *wavelength_, *max_quality_;
   double coefficient_;
   ResultId aperture_{}, focal_{}, element_{}, nu_half_{};
-  ResultId id_coefficient_{}, id_eta_{}, id_margin_{}, id_min_aperture_{}, id_cutoff_{}, id_diffraction_{}, id_linear_{};
+  ResultId id_wavelength_{}, id_coefficient_{}, id_eta_{}, id_margin_{}, id_min_aperture_{}, id_cutoff_{}, id_diffraction_{}, id_linear_{};
 };
 
 const PluginInfo& info() {
