@@ -7,6 +7,7 @@
 #include "radchain/physics/band.hpp"
 #include "radchain/physics/photometry.hpp"
 #include "radchain/physics/planck.hpp"
+#include "radchain/physics/pushbroom.hpp"
 #include "radchain/plugin.hpp"
 
 #include <algorithm>
@@ -62,11 +63,8 @@ class Sun final : public Stage {
     Spectrum spectrum;
     if (params_.text("model") == "planck") {
       const double t = params_.get("temperature");
-      const int n = 4000;  // log grid 100 nm .. 100 µm
-      Eigen::ArrayXd grid = Eigen::ArrayXd::LinSpaced(n, std::log(1e-7), std::log(1e-4)).exp();
-      const double scale = params_.get("total_irradiance") / physics::blackbody_exitance(t);
-      spectrum = Spectrum::sampled(grid, [&](double l) { return scale * physics::planck_spectral_exitance(l, t); },
-                                   "W m-2 m-1");
+      spectrum = physics::blackbody_exitance_spectrum(t).scaled(params_.get("total_irradiance") /
+                                                                physics::blackbody_exitance(t));
     } else {
       spectrum = params_.spectrum("table");
       if (params_.has("total_irradiance")) spectrum = spectrum.scaled(params_.get("total_irradiance") / spectrum.integral());
@@ -126,7 +124,8 @@ class Sun final : public Stage {
     c.light.report_band_min_m = lo;
     c.light.report_band_max_m = hi;
     if (pinned_z_[0] || pinned_z_[1])
-      c.light.illumination = with_band_total(c.light.illumination, lo, hi, total_ * (z_[1] - z_[0]));
+      c.light.illumination =
+          with_band_total(c.light.illumination, lo, hi, physics::band_solar_irradiance_W_m2(total_, z_[0], z_[1]));
   }
 
   void evaluate(Context& c) override {
@@ -143,7 +142,7 @@ class Sun final : public Stage {
         c.results.set(id_z_[i], z_[i]);
         if (pinned_z_[i]) c.results.set(id_z_computed_[i], z_computed_[i]);
       }
-      c.results.set(id_band_, total_ * inverse_square * (z_[1] - z_[0]));
+      c.results.set(id_band_, physics::band_solar_irradiance_W_m2(total_ * inverse_square, z_[0], z_[1]));
     }
   }
 

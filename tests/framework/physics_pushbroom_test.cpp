@@ -1,6 +1,7 @@
 // Pushbroom design relations (framework/physics/pushbroom.hpp) and Kolobrodov 1996's worked example, every
 // printed number checked against the paper's own formulas and inputs. Where a printed number does not follow,
 // the test asserts the value that does and says in a comment what was printed (docs/errata-kolobrodov-1996.md).
+#include "radchain/physics/band.hpp"
 #include "radchain/physics/pushbroom.hpp"
 
 #include <gtest/gtest.h>
@@ -156,7 +157,7 @@ TEST(KolobrodovWorkedExample, ThresholdIrradiance) {
   // k_i/k_c = 0.187/0.852 = 0.2195 → "0.22" (printed). Follows.
   EXPECT_PRINTED(k_i / k_c, 0.22, 0.005);
   // H_nr = 2·10⁻¹⁰ J/cm² × 0.2195 = 4.39·10⁻¹¹ → 4.4·10⁻¹¹ J/cm² (printed). Follows.
-  const double hnr = source_converted_exposure_J_m2(reference_exposure_J_m2, k_i, k_c);
+  const double hnr = exposure_for_working_source(reference_exposure_J_m2, k_i, k_c);
   EXPECT_NEAR(hnr / J_cm2, 4.38967e-11, 1e-16);
   EXPECT_PRINTED(hnr / J_cm2, 4.4e-11, 0.05e-11);
   // Eq. (20): E_n = 4.39·10⁻⁸ → 4.4·10⁻⁸ W/cm² (printed). Follows.
@@ -173,7 +174,7 @@ TEST(KolobrodovWorkedExample, EntrancePupil) {
   EXPECT_NEAR(from_printed / mm, 65.04, 0.005);
   const double band = band_solar_irradiance_W_m2(solar_total_W_m2, z_lo, z_hi);
   const double dm = threshold_exitance_W_m2(ground_irradiance_W_m2(band, tau_atm), reflectance_difference);
-  const double en = threshold_image_irradiance_W_m2(source_converted_exposure_J_m2(reference_exposure_J_m2, k_i, k_c),
+  const double en = threshold_image_irradiance_W_m2(exposure_for_working_source(reference_exposure_J_m2, k_i, k_c),
                                                     line_integration_time_s(element_count, clock_Hz));
   const double f = focal_length_for_ground_element_m(1.49 * element_m, altitude_m, ground_element_m);
   EXPECT_NEAR(entrance_pupil_diameter_m(f, en, tau_atm, tau_optics, dm) / mm, 65.04, 0.005);
@@ -236,7 +237,7 @@ TEST(KolobrodovErrata, AlongTrackSamplingAtOneMillisecond) {
   EXPECT_NEAR(element_count / tp_paper / 1e6, 7.9, 1e-12);
   EXPECT_NEAR(element_count / tp_real / 1e6, 7.2193, 1e-4);
   // The shorter integration time raises E_n by 1/0.6926 and the pupil by √ of that (×1.2016): 65.0 → 78.2 mm.
-  const double en = threshold_image_irradiance_W_m2(source_converted_exposure_J_m2(reference_exposure_J_m2, k_i, k_c),
+  const double en = threshold_image_irradiance_W_m2(exposure_for_working_source(reference_exposure_J_m2, k_i, k_c),
                                                     tp_real);
   const double band = band_solar_irradiance_W_m2(solar_total_W_m2, z_lo, z_hi);
   const double dm = threshold_exitance_W_m2(ground_irradiance_W_m2(band, tau_atm), reflectance_difference);

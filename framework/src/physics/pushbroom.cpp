@@ -55,11 +55,6 @@ double image_irradiance_W_m2(double aperture_m, double focal_length_m, double at
          exitance_W_m2;
 }
 
-double source_converted_exposure_J_m2(double reference_exposure_J_m2, double utilisation_reference,
-                                      double utilisation_real) {
-  // Kolobrodov 1996 (after Ishanin et al.): H_nr = H_nt k_i / k_c.
-  return reference_exposure_J_m2 * utilisation_reference / utilisation_real;
-}
 
 double line_integration_time_s(double element_count, double readout_clock_Hz) {
   // Kolobrodov 1996: t_i = t_0 N, t_0 = 1/f_D.

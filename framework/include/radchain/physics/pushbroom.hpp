@@ -50,11 +50,8 @@ double threshold_exitance_W_m2(double ground_irradiance_W_m2, double absolute_re
 // Eq. (5)/(21): image irradiance of a Lambertian scene of exitance M, E' = ¼ (D/f')² τ_A τ_0 M.
 double image_irradiance_W_m2(double aperture_m, double focal_length_m, double atmospheric_transmittance,
                              double optics_transmittance, double exitance_W_m2);
-// Noise-equivalent exposure for the real source (Kolobrodov, after Ishanin et al. 1991):
-// H_nr = H_nt k_i / k_c, H_nt specified for the 2854 K reference lamp, k_i and k_c the detector's utilisation
-// coefficients of the working band for the reference and the real source.
-double source_converted_exposure_J_m2(double reference_exposure_J_m2, double utilisation_reference,
-                                      double utilisation_real);
+// (H_nr = H_nt k_i / k_c, the noise-equivalent exposure for the real source: physics/band.hpp,
+// exposure_for_working_source.)
 // Integration time of a line read out element by element: t_i = N / f_D (= N t_0, t_0 = 1/f_D).
 double line_integration_time_s(double element_count, double readout_clock_Hz);
 // Eq. (20): threshold image irradiance E_n = H_n / t_i.
