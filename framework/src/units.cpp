@@ -31,6 +31,7 @@ struct Registry {
     ut_map_name_to_unit("electron", UT_ASCII, electron);
     ut_map_name_to_unit("electrons", UT_ASCII, electron);
     ut_map_unit_to_name(electron, "electron", UT_ASCII);
+    ut_free(electron);  // the maps hold their own copies; ours would leak (LeakSanitizer)
     alias("deg", "arc_degree");
     alias("AU", "astronomical_unit");
     alias("lp", "1");  // line pairs (cycles) per length are counted as plain reciprocal lengths
@@ -39,6 +40,7 @@ struct Registry {
   void alias(const char* symbol, const char* target) {
     ut_unit* unit = ut_parse(system, target, UT_ASCII);
     ut_map_symbol_to_unit(symbol, UT_ASCII, unit);
+    ut_free(unit);  // the map holds a copy
   }
 };
 
