@@ -114,6 +114,8 @@ class CcdLine final : public Stage {
     id_mtf_nyquist_ = c.declare("mtf_at_nyquist", "1", "eq. (8): |sinc(π V_D ν_N)|");
     id_element_ratio_ = c.declare("system_element_ratio", "1", "eq. (15) solved (TOMS 748): V_s / V_D");
     id_system_element_ = c.declare("system_element", "m", "V_s = (V_s/V_D) V_D (eq. 15)", "um");
+    if (params_.has("saturation_exposure"))
+      id_dynamic_range_ = c.declare("dynamic_range", "1", "H_m / H_n (saturation over noise-equivalent exposure)");
     if (background_in_band_ > 0 && params_.has("saturation_exposure"))
       id_saturation_ = c.declare("background_saturation_fraction", "1", "H_background / H_m (both for this source)");
   }
@@ -141,6 +143,7 @@ class CcdLine final : public Stage {
     c.results.set(id_mtf_nyquist_, physics::detector_pixel_mtf(0.5 / *pitch_, *element_));
     c.results.set(id_element_ratio_, element_ratio_);
     c.results.set(id_system_element_, element_ratio_ * *element_);
+    if (id_dynamic_range_) c.results.set(*id_dynamic_range_, *saturation_ / *nee_);
     if (id_saturation_) {
       const double saturation_working = physics::exposure_for_working_source(*saturation_, k_reference_, k_working_);
       c.results.set(*id_saturation_, c.light.background.scale * background_in_band_ * t / saturation_working);
@@ -156,7 +159,7 @@ class CcdLine final : public Stage {
   ResultId id_time_{}, id_k_ref_{}, id_k_work_{}, id_ratio_{}, id_nee_{}, id_nee_working_{}, id_threshold_{},
       id_signal_{}, id_snr_{}, id_line_{}, id_element_{}, id_nu_half_{}, id_nyquist_{}, id_mtf_nyquist_{}, id_element_ratio_{},
       id_system_element_{};
-  std::optional<ResultId> id_k_ref_computed_, id_k_work_computed_, id_saturation_;
+  std::optional<ResultId> id_k_ref_computed_, id_k_work_computed_, id_saturation_, id_dynamic_range_;
 };
 
 const PluginInfo& info() {
