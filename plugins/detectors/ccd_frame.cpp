@@ -1,16 +1,27 @@
 // A frame-transfer CCD counting a point object's photoelectrons in one frame, with its noise budget.
-//   signal   S  = t ∫_{λ1}^{λ2} P_λ η(λ) λ/(h c) dλ                  (Pan 2010 eqs. 6-8)
-//   noise    n² = N_d + σ_o² + n_q² + S                              (Pan 2010 eq. 9)
-//   N_d = dark rate × t (Poisson);  σ_o read noise;  shot noise √S
-//   n_q²: "emva" (n_well/2^N)²/12  (EMVA 1288 R4.0 eq. 8; uniform quantiser of step n_well/2^N)
+//   image    S_img = t ∫_{λ1}^{λ2} P_λ η(λ) λ/(h c) dλ                (Pan 2010 eqs. 6-8)
+//   signal   S = EE · S_img   in a centred n×n detection window      (Pan: EE = 1, n = 1)
+//   noise    n² = N_d + n²σ_o² + n² n_q² + B + S                     (Pan 2010 eq. 9, plus the sky B)
+//   N_d = n² × dark rate × t (Poisson);  σ_o read noise per pixel;  shot noise √S;  background √B
+//   n_q²: "emva" (n_well/2^N)²/12  (EMVA 1288 linear camera model, σ_q² = 1/12 DN²; a uniform quantiser of step n_well/2^N)
 //         "paper" n_well/(2^N √12)   (as printed in Pan 2010, §3.2; see docs/physics/quantisation.md)
+// Beyond the paper (docs/physics/ensquared-energy-and-background.md):
+//   EE   the fraction of the point image inside the window: `ensquared_energy` as given, else from the optics'
+//        PSF (optics.psf_wavelength → Airy, optics.gaussian_fwhm → Gaussian) over a square of side n × pitch,
+//        else 1 (the paper's assumption);
+//   B    sky background (zodiacal light + unresolved stars) of `sky_brightness` V mag/arcsec², solar spectrum:
+//        a source of magnitude m gives S(m) electrons, so B = n² · S(m_sky) · Ω_pixel/arcsec², Ω_pixel = (pitch/f')².
 #include "radchain/physics/photometry.hpp"
+#include "radchain/physics/psf.hpp"
 #include "radchain/plugin.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace {
 using namespace radchain;
+
+constexpr double arcsec_per_rad = 180.0 * 3600.0 / std::numbers::pi;
 
 const Schema& schema() {
   static const Schema s = {
@@ -28,6 +39,14 @@ const Schema& schema() {
       quantity("read_noise", "electron", "6 e-").fallback("0 e-").at_least(0).described("output amplifier noise σ_o (rms)"),
       choice("quantisation", {"emva", "paper"}).fallback("emva")
           .described("quantisation noise form: EMVA 1288 (n_well/2^N)²/12, or Pan 2010 as printed n_well/(2^N √12)"),
+      quantity("pixel_pitch", "m", "15 um").above(0)
+          .described("pixel pitch (needed for an ensquared energy from the optics PSF and for sky_brightness)"),
+      integer("window_pixels", "3").fallback("1").at_least(1).at_most(1000)
+          .described("side n of the n×n detection window; dark, read, quantisation and sky noise add over n² pixels"),
+      number("ensquared_energy", "0.8").above(0).at_most(1)
+          .described("fraction of the point image in the window (default: from the optics PSF if any, else 1 as in Pan 2010)"),
+      number("sky_brightness", "22.5").at_least(-10).at_most(40)
+          .described("sky background in V mag/arcsec² (zodiacal light + unresolved stars; 22-23 in space); default none"),
   };
   return s;
 }
@@ -37,6 +56,9 @@ class CcdFrame final : public Stage {
   explicit CcdFrame(const Params& p)
       : params_(p), qe_(p.handle("qe")), time_(p.handle("integration_time")), well_(p.handle("full_well")),
         bits_(p.handle("adc_bits")), dark_(p.handle("dark_rate")), read_(p.handle("read_noise")),
+        pitch_(p.handle("pixel_pitch")), window_(p.handle("window_pixels")), ensquared_(p.handle("ensquared_energy")),
+        sky_(p.handle("sky_brightness")), pitch_entry_(p.entry("pixel_pitch")),
+        ensquared_entry_(p.entry("ensquared_energy")), sky_entry_(p.entry("sky_brightness")),
         paper_quantisation_(p.text("quantisation") == "paper") {
     if (!(p.get("band_max") > p.get("band_min"))) p.reject("band_max", "must be larger than band_min");
   }
@@ -51,33 +73,92 @@ class CcdFrame final : public Stage {
       photon_rate_per_scale_ = band_integral({&signal.spectrum, &params_.spectrum("qe_curve")}, lo, hi, photons);
     else
       photon_rate_per_scale_ = band_integral({&signal.spectrum}, lo, hi, photons);
-    id_signal_ = c.declare("signal_electrons", "electron", "Pan 2010 eq. (8): S = t ∫ P_λ η λ/(hc) dλ", "e-");
-    id_dark_ = c.declare("dark_electrons", "electron", "N_d = dark rate × t (Pan 2010 §3.2 1)", "e-");
+
+    // The optics' PSF, found by name (telescope: psf = "airy" / "gaussian").
+    psf_wavelength_ = c.find("optics.psf_wavelength");
+    gaussian_fwhm_ = c.find("optics.gaussian_fwhm");
+    f_number_ = c.find("optics.f_number");
+    obscuration_ = c.find("optics.obscuration");
+    const bool psf = (psf_wavelength_ && f_number_) || gaussian_fwhm_;
+    if (psf && !ensquared_entry_.present && !pitch_entry_.present)
+      params_.reject("pixel_pitch", "the optics publish a PSF: give pixel_pitch to compute the ensquared energy over the "
+                                    "window (or give ensquared_energy)");
+    // What a sky background needs: the pixel's solid angle and the photometry of a magnitude.
+    focal_length_ = c.find("optics.focal_length");
+    area_ = c.find("optics.collecting_area");
+    optics_transmittance_ = c.find("optics.transmittance");
+    sun_magnitude_ = c.find("source.visual_magnitude");
+    if (sky_entry_.present) {
+      if (!pitch_entry_.present) params_.reject("sky_brightness", "needs pixel_pitch (the pixel's solid angle is (pitch/f')²)");
+      if (!focal_length_) params_.reject("sky_brightness", "needs the optics' focal_length (the pixel's solid angle is (pitch/f')²)");
+      if (!area_ || !optics_transmittance_ || !sun_magnitude_)
+        params_.reject("sky_brightness", "needs a source with a visual magnitude (sun) and a telescope");
+    }
+
+    id_signal_ = c.declare("signal_electrons", "electron",
+                           "S = EE × S_image: the point image's electrons in the detection window (Pan 2010 eq. 8, EE = 1)", "e-");
+    id_image_ = c.declare("image_electrons", "electron", "Pan 2010 eq. (8): S_image = t ∫ P_λ η λ/(hc) dλ", "e-");
+    id_ensquared_ = c.declare("ensquared_energy", "1", ensquared_equation(psf));
+    id_pixels_ = c.declare("window_pixel_count", "1", "n² pixels of the n×n detection window");
+    id_dark_ = c.declare("dark_electrons", "electron", "N_d = n² × dark rate × t (Pan 2010 §3.2 1)", "e-");
     id_dark_noise_ = c.declare("dark_noise", "electron", "√N_d (Poisson)", "e-");
-    id_read_noise_ = c.declare("read_noise", "electron", "σ_o (Pan 2010 §3.2 2)", "e-");
+    id_read_noise_ = c.declare("read_noise", "electron", "n σ_o: √(n² σ_o²) (Pan 2010 §3.2 2)", "e-");
     id_quant_noise_ = c.declare("quantisation_noise", "electron",
-                                paper_quantisation_ ? "Pan 2010 §3.2 3) as printed: n_q² = n_well/(2^N √12)"
-                                                    : "EMVA 1288: n_q² = (n_well/2^N)²/12",
+                                paper_quantisation_ ? "Pan 2010 §3.2 3) as printed: n_q² = n² n_well/(2^N √12)"
+                                                    : "EMVA 1288: n_q² = n² (n_well/2^N)²/12",
                                 "e-");
+    id_background_ = c.declare("background_electrons", "electron",
+                               "B = n² S(m_sky) Ω_pixel/arcsec² (sky V mag/arcsec², solar spectrum)", "e-");
+    id_background_noise_ = c.declare("background_noise", "electron", "√B (Poisson)", "e-");
     id_shot_noise_ = c.declare("shot_noise", "electron", "√S (Pan 2010 §3.2 4)", "e-");
-    id_noise_ = c.declare("noise_electrons", "electron", "Pan 2010 eq. (9): √(N_d + σ_o² + n_q² + S)", "e-");
+    id_noise_ = c.declare("noise_electrons", "electron", "Pan 2010 eq. (9) + sky: √(N_d + n²σ_o² + n² n_q² + B + S)", "e-");
     id_snr_ = c.declare("snr", "1", "Pan 2010 eq. (10): S / n");
     id_time_ = c.declare("integration_time", "s", "input t", "s");
+    if (pitch_entry_.present && focal_length_) {
+      id_pixel_angle_ = c.declare("pixel_solid_angle", "sr", "Ω_pixel = (pitch/f')²", "arcsec2");
+      id_sky_pixel_ = c.declare("sky_electrons_per_pixel", "electron",
+                                "S(m_sky) Ω_pixel/arcsec²: one pixel's sky electrons per frame", "e-");
+    }
   }
 
   void evaluate(Context& c) override {
     const double t = *time_;
-    const double signal = c.light.signal.scale * *qe_ * photon_rate_per_scale_ * t;
-    const double dark = *dark_ * t;
+    const double n = *window_, pixels = n * n;
+    const double image = c.light.signal.scale * *qe_ * photon_rate_per_scale_ * t;
+    const double ensquared = ensquared_energy(c, n);
+    const double signal = ensquared * image;
+    const double dark = pixels * *dark_ * t;
     const double levels = std::exp2(*bits_);
-    const double quant_var = paper_quantisation_ ? *well_ / (levels * std::sqrt(12.0))
-                                                 : (*well_ / levels) * (*well_ / levels) / 12.0;
-    const double noise = std::sqrt(dark + *read_ * *read_ + quant_var + signal);
+    const double quant_var = pixels * (paper_quantisation_ ? *well_ / (levels * std::sqrt(12.0))
+                                                           : (*well_ / levels) * (*well_ / levels) / 12.0);
+    const double read_var = pixels * *read_ * *read_;
+    double sky_per_pixel = 0.0;
+    if (id_pixel_angle_) {
+      const double angle = *pitch_ / c.results.value(*focal_length_);
+      c.results.set(*id_pixel_angle_, angle * angle);
+      if (sky_entry_.present && area_ && optics_transmittance_ && sun_magnitude_) {
+        // A solar-spectrum source of magnitude m_sky gives this many electrons per frame (the target's photometry,
+        // per unit ratio of eq. 1); the sky gives that per square arcsecond.
+        const double electrons_per_ratio = photon_rate_per_scale_ * *qe_ * t * c.results.value(*area_) *
+                                           c.results.value(*optics_transmittance_);
+        const double ratio = physics::magnitude_ratio(*sky_, c.results.value(*sun_magnitude_));
+        const double pixel_arcsec2 = angle * angle * arcsec_per_rad * arcsec_per_rad;
+        sky_per_pixel = electrons_per_ratio * ratio * pixel_arcsec2;
+      }
+      c.results.set(*id_sky_pixel_, sky_per_pixel);
+    }
+    const double background = pixels * sky_per_pixel;
+    const double noise = std::sqrt(dark + read_var + quant_var + background + signal);
     c.results.set(id_signal_, signal);
+    c.results.set(id_image_, image);
+    c.results.set(id_ensquared_, ensquared);
+    c.results.set(id_pixels_, pixels);
     c.results.set(id_dark_, dark);
     c.results.set(id_dark_noise_, std::sqrt(dark));
-    c.results.set(id_read_noise_, *read_);
+    c.results.set(id_read_noise_, std::sqrt(read_var));
     c.results.set(id_quant_noise_, std::sqrt(quant_var));
+    c.results.set(id_background_, background);
+    c.results.set(id_background_noise_, std::sqrt(background));
     c.results.set(id_shot_noise_, std::sqrt(signal));
     c.results.set(id_noise_, noise);
     c.results.set(id_snr_, signal / noise);
@@ -85,18 +166,51 @@ class CcdFrame final : public Stage {
   }
 
  private:
+  std::string ensquared_equation(bool psf) const {
+    if (ensquared_entry_.given) return "input EE";
+    if (psf_wavelength_ && f_number_)
+      return "Airy PSF over a centred square of side n × pitch: (4/π) ∫0^{π/4} EC(n p/(2 cos θ)) dθ, "
+             "EC = encircled energy (Born & Wolf §8.5.2; annular pupil: Mahajan 2001)";
+    if (gaussian_fwhm_) return "Gaussian PSF over a centred square of side n × pitch: erf(n p/(2√2 σ))²";
+    return psf ? "input EE" : "1: all of the image in the window (Pan 2010)";
+  }
+
+  // EE as given; else from the optics' PSF (cached: it changes only with the window, pitch, λ, N, ε or FWHM);
+  // else 1.
+  double ensquared_energy(Context& c, double n) {
+    if (ensquared_entry_.present) return *ensquared_;
+    if (!pitch_entry_.present) return 1.0;
+    const double side = n * *pitch_;
+    if (psf_wavelength_ && f_number_) {
+      const double lambda = c.results.value(*psf_wavelength_), f_number = c.results.value(*f_number_);
+      const double eps = obscuration_ ? c.results.value(*obscuration_) : 0.0;
+      if (side != cache_[0] || lambda != cache_[1] || f_number != cache_[2] || eps != cache_[3]) {
+        cache_[0] = side, cache_[1] = lambda, cache_[2] = f_number, cache_[3] = eps;
+        cached_ensquared_ = physics::airy_ensquared_energy(side, lambda, f_number, eps);
+      }
+      return cached_ensquared_;
+    }
+    if (gaussian_fwhm_) return physics::gaussian_ensquared_energy(side, c.results.value(*gaussian_fwhm_));
+    return 1.0;
+  }
+
   const Params& params_;
-  const double *qe_, *time_, *well_, *bits_, *dark_, *read_;
+  const double *qe_, *time_, *well_, *bits_, *dark_, *read_, *pitch_, *window_, *ensquared_, *sky_;
+  const Params::Entry &pitch_entry_, &ensquared_entry_, &sky_entry_;
   bool paper_quantisation_;
   double photon_rate_per_scale_ = 0;
-  ResultId id_signal_{}, id_dark_{}, id_dark_noise_{}, id_read_noise_{}, id_quant_noise_{}, id_shot_noise_{},
-      id_noise_{}, id_snr_{}, id_time_{};
+  double cache_[4] = {-1, -1, -1, -1}, cached_ensquared_ = 1;
+  std::optional<ResultId> psf_wavelength_, gaussian_fwhm_, f_number_, obscuration_, focal_length_, area_,
+      optics_transmittance_, sun_magnitude_, id_pixel_angle_, id_sky_pixel_;
+  ResultId id_signal_{}, id_image_{}, id_ensquared_{}, id_pixels_{}, id_dark_{}, id_dark_noise_{}, id_read_noise_{},
+      id_quant_noise_{}, id_background_{}, id_background_noise_{}, id_shot_noise_{}, id_noise_{}, id_snr_{}, id_time_{};
 };
 
 const PluginInfo& info() {
   static const PluginInfo i{plugin_abi_version, framework_version, Kind::detector, "ccd_frame",
-                            "frame CCD: photoelectrons of a point image and the dark/read/quantisation/shot noise budget",
-                            "Pan et al. 2010 eqs. (6)-(10); EMVA 1288 R4.0", &schema,
+                            "frame CCD: a point image's electrons in an n×n window and the dark/read/quantisation/sky/shot "
+                            "noise budget",
+                            "Pan et al. 2010 eqs. (6)-(10); EMVA 1288 R4.0; Born & Wolf §8.5.2 (ensquared energy)", &schema,
                             [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<CcdFrame>(p); }};
   return i;
 }

@@ -3,6 +3,10 @@
 //   P_λ = E_λ · π D²/4 · (1 - ε²) · τ            (Pan 2010 eq. 2, in spectral form)
 // and an extended scene's radiance becomes focal-plane irradiance
 //   E'_λ = π L_λ τ / (4 N²) = ¼ (D/f')² τ M_λ       (Kolobrodov 1996 eq. 5, M = π L; on axis, object at infinity)
+// Optionally a point spread function for the detector's ensquared energy (not in Pan 2010, which puts all
+// of a star's energy in one pixel): psf = "airy" (diffraction-limited annular pupil at psf_wavelength, needs
+// focal_length) or "gaussian" (FWHM on the focal plane). See docs/physics/ensquared-energy-and-background.md.
+#include "radchain/physics/psf.hpp"
 #include "radchain/plugin.hpp"
 
 #include <cmath>
@@ -22,6 +26,12 @@ const Schema& schema() {
           .described("spectral transmittance τ(λ), multiplied into the signal spectrum"),
       quantity("focal_length", "m", "832 mm").above(0).at_most(1000)
           .described("effective focal length f' (needed for extended scenes and pixel geometry)"),
+      choice("psf", {"none", "airy", "gaussian"}).fallback("none")
+          .described("point spread function published for the detector's ensquared energy (none: not modelled)"),
+      quantity("psf_wavelength", "m", "0.6 um").above(0)
+          .described("wavelength of the monochromatic Airy PSF (psf = \"airy\"; e.g. the band's mean)"),
+      quantity("gaussian_fwhm", "m", "15 um").above(0)
+          .described("full width at half maximum of a Gaussian PSF on the focal plane (psf = \"gaussian\")"),
   };
   return s;
 }
@@ -30,7 +40,15 @@ class Telescope final : public Stage {
  public:
   explicit Telescope(const Params& p)
       : params_(p), aperture_(p.handle("aperture")), obscuration_(p.handle("obscuration")),
-        transmittance_(p.handle("transmittance")), focal_length_(p.handle("focal_length")) {}
+        transmittance_(p.handle("transmittance")), focal_length_(p.handle("focal_length")),
+        psf_wavelength_(p.handle("psf_wavelength")), gaussian_fwhm_(p.handle("gaussian_fwhm")),
+        airy_(p.text("psf") == "airy"), gaussian_(p.text("psf") == "gaussian") {
+    if (airy_ && !p.has("psf_wavelength")) p.reject("psf", "psf = \"airy\" needs psf_wavelength, e.g. \"0.6 um\"");
+    if (airy_ && !p.has("focal_length")) p.reject("psf", "psf = \"airy\" needs focal_length (the Airy radius is 1.22 λ f'/D)");
+    if (gaussian_ && !p.has("gaussian_fwhm")) p.reject("psf", "psf = \"gaussian\" needs gaussian_fwhm, e.g. \"15 um\"");
+    if (!airy_ && p.has("psf_wavelength")) p.reject("psf_wavelength", "is used only with psf = \"airy\"");
+    if (!gaussian_ && p.has("gaussian_fwhm")) p.reject("gaussian_fwhm", "is used only with psf = \"gaussian\"");
+  }
 
   void prepare(Context& c) override {
     Radiation& signal = c.light.signal;
@@ -56,10 +74,18 @@ class Telescope final : public Stage {
     id_area_ = c.declare("collecting_area", "m2", "π D²/4 (1 - ε²)", "cm2");
     id_aperture_ = c.declare("aperture", "m", "input D", "cm");
     id_transmittance_ = c.declare("transmittance", "1", "input τ");
+    id_obscuration_ = c.declare("obscuration", "1", "input ε (linear)");
     if (params_.has("focal_length")) {
       id_focal_ = c.declare("focal_length", "m", "input f'", "mm");
       id_f_number_ = c.declare("f_number", "1", "N = f'/D");
     }
+    // The PSF, by name: the detector finds "optics.psf_wavelength" (Airy) or "optics.gaussian_fwhm".
+    if (airy_) {
+      id_psf_wavelength_ = c.declare("psf_wavelength", "m", "input λ of the Airy PSF", "um");
+      id_airy_radius_ = c.declare("airy_radius", "m", "first dark ring v₁ λ N/π (v₁ = 3.8317 for ε = 0: 1.2197 λ N; "
+                                  "Born & Wolf §8.5.2)", "um");
+    }
+    if (gaussian_) id_gaussian_fwhm_ = c.declare("gaussian_fwhm", "m", "input FWHM of the Gaussian PSF", "um");
     if (auto lux = c.find("target.illuminance"))
       target_lux_ = *lux, id_flux_ = c.declare("luminous_flux", "lm", "Pan 2010 eq. (2): F = π D² E_t / 4", "lm");
   }
@@ -70,6 +96,7 @@ class Telescope final : public Stage {
     c.results.set(id_area_, area);
     c.results.set(id_aperture_, d);
     c.results.set(id_transmittance_, *transmittance_);
+    c.results.set(id_obscuration_, *obscuration_);
     if (form_ == RadiationForm::focal_power) {
       c.light.signal.scale *= area * *transmittance_;
     } else {
@@ -82,21 +109,31 @@ class Telescope final : public Stage {
       c.results.set(id_focal_, *focal_length_);
       c.results.set(id_f_number_, *focal_length_ / d);
     }
+    if (airy_) {
+      if (*obscuration_ != ring_obscuration_)  // the zero moves with ε (a scalar parameter): recompute on change
+        first_dark_ring_v_ = physics::airy_first_dark_ring_v(*obscuration_), ring_obscuration_ = *obscuration_;
+      c.results.set(id_psf_wavelength_, *psf_wavelength_);
+      c.results.set(id_airy_radius_, first_dark_ring_v_ * *psf_wavelength_ * (*focal_length_ / d) / std::numbers::pi);
+    }
+    if (gaussian_) c.results.set(id_gaussian_fwhm_, *gaussian_fwhm_);
     if (target_lux_) c.results.set(id_flux_, std::numbers::pi * d * d / 4.0 * c.results.value(*target_lux_));
   }
 
  private:
   const Params& params_;
-  const double *aperture_, *obscuration_, *transmittance_, *focal_length_;
+  const double *aperture_, *obscuration_, *transmittance_, *focal_length_, *psf_wavelength_, *gaussian_fwhm_;
+  bool airy_, gaussian_;
+  double first_dark_ring_v_ = 0, ring_obscuration_ = -1;
   RadiationForm form_ = RadiationForm::none;
   std::optional<ResultId> target_lux_;
-  ResultId id_area_{}, id_aperture_{}, id_transmittance_{}, id_focal_{}, id_f_number_{}, id_flux_{};
+  ResultId id_area_{}, id_aperture_{}, id_transmittance_{}, id_focal_{}, id_f_number_{}, id_flux_{}, id_obscuration_{},
+      id_psf_wavelength_{}, id_airy_radius_{}, id_gaussian_fwhm_{};
 };
 
 const PluginInfo& info() {
   static const PluginInfo i{plugin_abi_version, framework_version, Kind::optics, "telescope",
-                            "entrance pupil, obscuration, transmittance and focal length of an objective",
-                            "Pan 2010 eq. (2); Kolobrodov 1996 eq. (5)", &schema,
+                            "entrance pupil, obscuration, transmittance, focal length and PSF of an objective",
+                            "Pan 2010 eq. (2); Kolobrodov 1996 eq. (5); Born & Wolf §8.5.2 (Airy PSF)", &schema,
                             [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<Telescope>(p); }};
   return i;
 }

@@ -1,7 +1,13 @@
 // A point object of given visual magnitude with the Sun's spectral shape (Pan 2010 eq. 1): its irradiance at
 // the pupil is E_t(λ) = 10^{0.4 (m_sun - m)} E_sun(λ), so its illuminance is 10^{0.4 (m_sun - m)} E_s.
+// E_sun is the Sun at 1 AU (m_sun = -26.73 is its magnitude there): the source's spectrum per unit
+// illumination_scale. The scale itself (the Sun-target distance, a down-path atmosphere) lights objects that
+// reflect, not a star of given magnitude, so it is not applied here.
+#include "radchain/constants.hpp"
 #include "radchain/physics/photometry.hpp"
 #include "radchain/plugin.hpp"
+
+#include <cmath>
 
 namespace {
 using namespace radchain;
@@ -26,20 +32,24 @@ class PointMagnitude final : public Stage {
       c.light.signal.spectrum = c.light.signal.spectrum.product(c.light.up_path_transmittance, c.light.signal.spectrum.unit());
     sun_magnitude_ = c.require("source.visual_magnitude");
     sun_illuminance_ = c.require("source.illuminance");
+    sun_distance_ = c.find("source.distance");
     id_illuminance_ = c.declare("illuminance", "lx", "Pan 2010 eq. (1): E_t = 10^{0.4(m_sun - m)} E_s", "lx");
     id_ratio_ = c.declare("irradiance_ratio", "1", "Pan 2010 eq. (1): E_t / E_s");
   }
 
   void evaluate(Context& c) override {
     const double ratio = physics::magnitude_ratio(*magnitude_, c.results.value(sun_magnitude_));
-    c.light.signal.scale = c.light.illumination_scale * ratio * c.light.up_path_scale;
+    c.light.signal.scale = ratio * c.light.up_path_scale;
     c.results.set(id_ratio_, ratio);
-    c.results.set(id_illuminance_, ratio * c.results.value(sun_illuminance_));
+    // source.illuminance is at the source's distance: back to 1 AU.
+    const double to_1au = sun_distance_ ? std::pow(c.results.value(*sun_distance_) / constants::astronomical_unit_m, 2) : 1.0;
+    c.results.set(id_illuminance_, ratio * c.results.value(sun_illuminance_) * to_1au);
   }
 
  private:
   const double* magnitude_;
   ResultId sun_magnitude_{}, sun_illuminance_{}, id_illuminance_{}, id_ratio_{};
+  std::optional<ResultId> sun_distance_;
 };
 
 const PluginInfo& info() {
