@@ -13,6 +13,9 @@ packages=(
   libtbb-dev              # thread pool for sweeps and catalogues
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox             # plots of sweeps and MTF curves
+  libopenimageio-dev      # radchain render: FITS/PNG/TIFF output through OpenImageIO 2.4
+  openimageio-tools       # iinfo/oiiotool, to inspect rendered frames and their FITS headers
+  libfftw3-dev            # radchain render: PSFs and MTFs applied in the Fourier domain
 )
 
 missing=()

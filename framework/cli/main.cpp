@@ -1,124 +1,27 @@
-// radchain: the command-line host. Subcommands: run, catalogue, plugins, describe.
-// Exit codes: 0 ok, 1 a failed check ([expected] or a solve), 2 bad input.
-#include "radchain/chain.hpp"
+// radchain: the command-line host. Subcommands: run, catalogue, compare, sweep, merge, plugins, describe.
+// This file only parses the command line (CLI11); the commands are in commands.cpp, the work in the framework.
+// Exit codes: 0 ok, 1 a failed check ([expected], a solve, a compare tolerance), 2 bad input (one line on
+// stderr), 3 an internal error.
+#include "commands.hpp"
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
-#include "radchain/report.hpp"
-#include "radchain/units.hpp"
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
 
-#include <algorithm>
-#include <cmath>
-#include <filesystem>
 #include <iostream>
 
-namespace fs = std::filesystem;
+namespace {
 using namespace radchain;
 
-namespace {
-
-std::vector<Override> parse_overrides(const std::vector<std::string>& sets) {
-  std::vector<Override> out;
-  for (const auto& s : sets) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw InputError(SourceLocation{"--set", 0, 0}, "", s, "expected <section>.<key>=<value>, e.g. optics.aperture=\"20 cm\"");
-    out.push_back(Override{s.substr(0, eq), s.substr(eq + 1)});
-  }
-  return out;
+void add_output(CLI::App* command, cli::Output& output, const std::string& formats) {
+  command->add_option("--out", output.out, "write to this file instead of stdout (.csv/.json/.txt also set the format)");
+  command->add_option("--format", output.format, formats);
 }
 
-std::string kind_section_example(Kind kind) {
-  return kind == Kind::criterion ? "criteria.<name>" : to_string(kind);
-}
-
-void describe(const PluginInfo& info, const std::string& path) {
-  fmt::print("{} — {} plugin (framework {}, ABI {})\n", info.name, to_string(info.kind), info.framework_version, info.abi_version);
-  fmt::print("  {}\n", info.summary);
-  fmt::print("  physics: {}\n", info.reference);
-  fmt::print("  file: {}\n\nkeys:\n", path);
-  const Schema& schema = info.schema();
-  std::size_t width = 6;
-  for (const auto& p : schema) width = std::max(width, p.key.size());
-  for (const auto& p : schema) {
-    std::string kind;
-    switch (p.type) {
-      case ParamType::quantity: kind = "quantity [" + p.si_unit + "]"; break;
-      case ParamType::number: kind = "number"; break;
-      case ParamType::integer: kind = "integer"; break;
-      case ParamType::text: kind = "string"; break;
-      case ParamType::choice: kind = "choice"; break;
-      case ParamType::flag: kind = "boolean"; break;
-      case ParamType::spectrum: kind = "spectrum CSV [" + p.si_unit + "]"; break;
-    }
-    const std::string status = p.required ? "required" : p.default_value ? "default " + *p.default_value : "optional";
-    fmt::print("  {:<{}}  {:<24} {:<22} {}\n", p.key, width, kind, status, p.doc);
-    const std::string range = p.range_text();
-    if (!range.empty()) fmt::print("  {:<{}}  {:<24} accepted: {}\n", "", width, "", range);
-  }
-  fmt::print("\nexample:\n[{}]\nplugin = \"{}\"\n", kind_section_example(info.kind), info.name);
-  for (const auto& p : schema) {
-    const std::string value = p.required || !p.default_value ? p.example
-                              : (p.type == ParamType::quantity || p.type == ParamType::choice || p.type == ParamType::text ||
-                                 p.type == ParamType::spectrum)
-                                  ? "\"" + *p.default_value + "\""
-                                  : *p.default_value;
-    const std::string line = fmt::format("{}{} = {}", p.required || p.default_value ? "" : "# ", p.key, value);
-    fmt::print("{:<40} # {}{}\n", line, p.required ? "required: " : p.default_value ? "" : "optional: ", p.doc);
-  }
-}
-
-std::vector<std::string> sensor_files(const std::vector<std::string>& inputs) {
-  std::vector<std::string> files;
-  for (const auto& input : inputs) {
-    if (fs::is_directory(input)) {
-      std::vector<std::string> found;
-      for (const auto& e : fs::directory_iterator(input))
-        if (e.is_regular_file() && e.path().extension() == ".toml") found.push_back(e.path().string());
-      std::sort(found.begin(), found.end());
-      files.insert(files.end(), found.begin(), found.end());
-    } else {
-      files.push_back(input);
-    }
-  }
-  return files;
-}
-
-int catalogue(const std::vector<std::string>& inputs, const std::vector<Override>& overrides) {
-  const auto files = sensor_files(inputs);
-  bool all_passed = true;
-  fmt::print("{:<34} {:<38} {:>16} {:>16} {:>12} {}\n", "sensor", "result", "computed", "printed", "delta", "check");
-  for (const auto& file : files) {
-    Chain chain = load_sensor(file, overrides);
-    const Report report = chain.run();
-    const std::string name = fs::path(file).stem().string();
-    for (const auto& s : report.solves)
-      if (!s.converged) {
-        all_passed = false;
-        fmt::print("{:<34} solve {} FAILED: {}\n", name, s.spec.unknown, s.message);
-      }
-    for (const auto& e : report.expectations) {
-      const ResultInfo* info = nullptr;
-      for (const auto& r : report.results)
-        if (r.name == e.spec.result) info = &r;
-      // Show the computed value in the unit the printed reference was written in.
-      double factor = info->display_factor;
-      std::string unit = info->display_unit == "1" ? "" : info->display_unit;
-      if (!e.spec.display_unit.empty()) {
-        factor = 1.0 / units::conversion(e.spec.display_unit, info->si_unit).factor;
-        unit = e.spec.display_unit;
-      }
-      const double rel = e.spec.value_si != 0 ? (e.computed_si - e.spec.value_si) / std::abs(e.spec.value_si) : 0.0;
-      fmt::print("{:<34} {:<38} {:>16} {:>16} {:>11.2f}% {}\n", name, e.spec.result,
-                 fmt::format("{:.5g} {}", e.computed_si * factor, unit), e.spec.as_written, 100 * rel,
-                 e.passed ? "ok" : "FAIL");
-      all_passed = all_passed && e.passed;
-    }
-  }
-  fmt::print("{} sensor files, {}\n", files.size(), all_passed ? "all checks passed" : "SOME CHECKS FAILED");
-  return all_passed ? 0 : 1;
+void add_batch(CLI::App* command, cli::Batch& batch) {
+  command->add_option("--shard", batch.shard, "run part k of n of the job (k/n) and write a shard file for `radchain merge`");
+  command->add_option("--shard-order", batch.shard_order, "how points are dealt to shards: block (contiguous) or round-robin");
+  command->add_option("--threads", batch.threads, "threads to use (default: all cores)");
 }
 
 }  // namespace
@@ -129,61 +32,66 @@ int main(int argc, char** argv) {
   std::vector<std::string> plugin_path;
   app.add_option("--plugin-path", plugin_path, "extra plugin folders (searched first; colon-separated allowed)");
 
-  auto* run = app.add_subcommand("run", "evaluate one sensor file forward, perform its solves, check [expected]");
-  std::string run_file, format = "text";
-  std::vector<std::string> run_sets;
-  run->add_option("sensor", run_file, "sensor TOML file")->required();
-  run->add_option("--set", run_sets, "override a key: section.key=value (repeatable)");
-  run->add_option("--format", format, "text or json")->check(CLI::IsMember({"text", "json"}));
+  cli::RunOptions run;
+  auto* run_cmd = app.add_subcommand("run", "evaluate one sensor file forward, perform its solves, check [expected]");
+  run_cmd->add_option("sensor", run.sensor, "sensor TOML file")->required();
+  run_cmd->add_option("--set", run.sets, "override a key: section.key=value (repeatable)");
+  run_cmd->add_option("--format", run.format, "text or json")->check(CLI::IsMember({"text", "json"}));
 
-  auto* cat = app.add_subcommand("catalogue", "run many sensor files and print computed vs published values");
-  std::vector<std::string> cat_inputs;
-  std::vector<std::string> cat_sets;
-  cat->add_option("inputs", cat_inputs, "sensor files or folders")->required();
-  cat->add_option("--set", cat_sets, "override a key in every file: section.key=value (repeatable)");
+  cli::CatalogueCommand catalogue;
+  auto* cat_cmd = app.add_subcommand("catalogue", "run many sensor files: key results vs their [expected] references");
+  cat_cmd->add_option("inputs", catalogue.inputs, "sensor files or folders")->required();
+  cat_cmd->add_option("--set", catalogue.sets, "override a key in every file: section.key=value (repeatable)");
+  cat_cmd->add_option("--results", catalogue.results, "more results to show per sensor (comma-separated)")->delimiter(',');
+  add_output(cat_cmd, catalogue.output, "text (default), csv or json");
+  add_batch(cat_cmd, catalogue.batch);
 
-  auto* plugins = app.add_subcommand("plugins", "list the plugins found on the search path");
-  auto* desc = app.add_subcommand("describe", "show a plugin's keys, units, defaults, ranges and a TOML example");
+  cli::CompareCommand compare;
+  auto* cmp_cmd = app.add_subcommand("compare", "two sensor files or saved JSON results side by side, and their input differences");
+  cmp_cmd->add_option("a", compare.a, "sensor file or `radchain run --format json` output")->required();
+  cmp_cmd->add_option("b", compare.b, "sensor file or `radchain run --format json` output")->required();
+  cmp_cmd->add_option("--set", compare.sets, "override a key in both sensor files (repeatable)");
+  cmp_cmd->add_option("--tolerance", compare.tolerance, "relative tolerance (1e-6, 0.1%): exit 1 when a result moves more");
+  add_output(cmp_cmd, compare.output, "text (default), csv or json");
+
+  cli::SweepCommand sweep;
+  auto* sweep_cmd = app.add_subcommand("sweep", "evaluate a sensor over a grid of parameter values, solves at every point");
+  sweep_cmd->add_option("sensor", sweep.sensor, "sensor TOML file")->required();
+  sweep_cmd->add_option("--set", sweep.sets,
+                        "an axis section.key=from:to:steps (\"optics.aperture=15 cm:30 cm:16\"), or a fixed value (repeatable)");
+  sweep_cmd->add_option("--results", sweep.results, "result columns (comma-separated; default: every result)")->delimiter(',');
+  sweep_cmd->add_option("--plot", sweep.plot, "draw a 1-D sweep to this PNG with gnuplot");
+  add_output(sweep_cmd, sweep.output, "csv (default), text or json");
+  add_batch(sweep_cmd, sweep.batch);
+
+  cli::MergeCommand merge;
+  auto* merge_cmd = app.add_subcommand("merge", "join shard files into the output of the unsharded job");
+  merge_cmd->add_option("shards", merge.shards, "shard files written with --shard k/n")->required();
+  add_output(merge_cmd, merge.output, "the job's format (default), text, csv or json");
+
+  auto* plugins_cmd = app.add_subcommand("plugins", "list the plugins found on the search path");
   std::string describe_name;
-  desc->add_option("plugin", describe_name, "plugin name (or path to a plugin .so)")->required();
+  auto* describe_cmd = app.add_subcommand("describe", "show a plugin's keys, units, defaults, ranges and a TOML example");
+  describe_cmd->add_option("plugin", describe_name, "plugin name (or path to a plugin .so)")->required();
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "radchain: " << e.what() << " (see radchain --help)\n";
+    return static_cast<int>(ExitCode::bad_input);
+  }
+
   try {
     PluginHost::instance().configure(plugin_path);
-    if (*run) {
-      Chain chain = load_sensor(run_file, parse_overrides(run_sets));
-      const Report report = chain.run();
-      std::cout << (format == "json" ? format_report_json(report) : format_report_text(report));
-      return report.all_passed() ? 0 : 1;
-    }
-    if (*cat) return catalogue(cat_inputs, parse_overrides(cat_sets));
-    if (*plugins) {
-      const auto found = PluginHost::instance().discover();
-      fmt::print("{:<20} {:<11} {:<8} {}\n", "name", "kind", "version", "file");
-      for (const auto& f : found) {
-        const PluginInfo& info = PluginHost::instance().load_file(f.path);
-        fmt::print("{:<20} {:<11} {:<8} {}\n", info.name, to_string(info.kind), info.framework_version, f.path);
-      }
-      fmt::print("{} plugins (search path: {})\n", found.size(), join(PluginHost::instance().search_path(), ":"));
-      return 0;
-    }
-    if (*desc) {
-      if (describe_name.find('/') != std::string::npos) {
-        describe(PluginHost::instance().load_file(describe_name), describe_name);
-        return 0;
-      }
-      for (const auto& f : PluginHost::instance().discover())
-        if (f.name == describe_name) {
-          describe(PluginHost::instance().load_file(f.path), f.path);
-          return 0;
-        }
-      std::vector<std::string> names;
-      for (const auto& f : PluginHost::instance().discover()) names.push_back(f.name);
-      const std::string near = nearest_match(describe_name, names);
-      throw InputError({}, "describe", describe_name,
-                       fmt::format("unknown plugin{}; available: {}", near.empty() ? "" : " (did you mean \"" + near + "\"?)",
-                                   join(names)));
-    }
+    if (*run_cmd) return cli::run(run);
+    if (*cat_cmd) return cli::catalogue(catalogue);
+    if (*cmp_cmd) return cli::compare(compare);
+    if (*sweep_cmd) return cli::sweep(sweep);
+    if (*merge_cmd) return cli::merge(merge);
+    if (*plugins_cmd) return cli::plugins();
+    if (*describe_cmd) return cli::describe(describe_name);
   } catch (const InputError& error) {
     std::cerr << error.what() << "\n";
     return static_cast<int>(ExitCode::bad_input);

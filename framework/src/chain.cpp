@@ -1,6 +1,7 @@
 #include "radchain/chain.hpp"
 
 #include "radchain/error.hpp"
+#include "radchain/sweep.hpp"  // solve_all
 #include "radchain/units.hpp"
 
 #include <boost/math/tools/roots.hpp>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <string_view>
 
 namespace radchain {
 
@@ -48,8 +50,13 @@ void Chain::evaluate_all() {
     Context context = context_for(slot);
     slot.stage->evaluate(context);
   }
-  for (std::size_t i = 0; i < solves.size() && i < solve_result_ids_.size(); ++i)
-    results_.set(solve_result_ids_[i], *parameter(solves[i].unknown));
+  for (const auto& [id, value] : solved_parameters_) results_.set(id, *value);
+}
+
+void Chain::set_solve_result_ids(const std::vector<ResultId>& ids) {
+  solved_parameters_.clear();
+  for (std::size_t i = 0; i < ids.size() && i < solves.size(); ++i)
+    solved_parameters_.emplace_back(ids[i], parameter(solves[i].unknown));
 }
 
 void Chain::evaluate() {
@@ -57,17 +64,40 @@ void Chain::evaluate() {
   evaluate_all();
 }
 
+// Name equality without a call into libc, and lookups without temporary strings: evaluate_all() finds the
+// solved unknowns by name at every evaluation.
+static bool same_name(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] != b[i]) return false;
+  return true;
+}
+
 StageSlot& Chain::slot(const std::string& section) {
   for (auto& s : stages)
-    if (s.section == section) return s;
+    if (same_name(s.section, section)) return s;
   throw std::out_of_range("no section \"" + section + "\"");
 }
 
 double* Chain::parameter(const std::string& qualified_key) {
   const auto dot = qualified_key.rfind('.');
   if (dot == std::string::npos) throw std::out_of_range("\"" + qualified_key + "\" is not <section>.<key>");
-  StageSlot& s = slot(qualified_key.substr(0, dot));
-  Params::Entry& entry = s.params->entry(qualified_key.substr(dot + 1));
+  const std::string_view section(qualified_key.data(), dot);
+  const std::string_view key(qualified_key.data() + dot + 1, qualified_key.size() - dot - 1);
+  StageSlot* s = nullptr;
+  for (auto& candidate : stages)
+    if (same_name(candidate.section, section)) {
+      s = &candidate;
+      break;
+    }
+  if (!s) throw std::out_of_range("no section \"" + std::string(section) + "\"");
+  Params::Entry* found = nullptr;
+  for (auto& e : s->params->entries())
+    if (same_name(e.spec->key, key)) {
+      found = &e;
+      break;
+    }
+  Params::Entry& entry = found ? *found : s->params->entry(std::string(key));  // (throws the schema's message)
   const ParamType type = entry.spec->type;
   if (type != ParamType::quantity && type != ParamType::number && type != ParamType::integer)
     throw std::out_of_range("\"" + qualified_key + "\" is not a numeric parameter");
@@ -87,17 +117,18 @@ double Chain::result(const std::string& name) const {
   throw std::out_of_range("no result \"" + name + "\"");
 }
 
-SolveOutcome Chain::solve(const SolveSpec& spec) {
+// Chain::solve through Chain's public interface, so that solve_all() (sweeps) shares it with run().
+static SolveOutcome solve_one(Chain& chain, const SolveSpec& spec) {
   SolveOutcome outcome{spec, std::numeric_limits<double>::quiet_NaN(), 0, false, {}, {}, {}};
-  double* unknown = parameter(spec.unknown);
+  double* unknown = chain.parameter(spec.unknown);
   const auto dot = spec.unknown.rfind('.');
-  const bool spectral = slot(spec.unknown.substr(0, dot)).params->entry(spec.unknown.substr(dot + 1)).spec->spectral;
+  const bool spectral = chain.slot(spec.unknown.substr(0, dot)).params->entry(spec.unknown.substr(dot + 1)).spec->spectral;
   std::vector<ResultId> margins;
-  for (const auto& name : spec.criteria) margins.push_back(*results_.find("criteria." + name + ".margin"));
+  for (const auto& name : spec.criteria) margins.push_back(*chain.results().find("criteria." + name + ".margin"));
   auto set_unknown = [&](double x) {
     *unknown = x;
-    if (spectral) spectral_dirty_ = true;
-    evaluate();
+    if (spectral) chain.invalidate_spectra();
+    chain.evaluate();
   };
 
   // Each criterion's own root (Boost.Math TOMS 748: Alefeld, Potra, Shi 1995; bracketing, superlinear).
@@ -105,7 +136,7 @@ SolveOutcome Chain::solve(const SolveSpec& spec) {
   for (std::size_t k = 0; k < margins.size(); ++k) {
     auto f = [&](double x) {
       set_unknown(x);
-      return results_.value(margins[k]);
+      return chain.results().value(margins[k]);
     };
     const double f_lo = f(spec.lo), f_hi = f(spec.hi);
     if (std::isnan(f_lo) || std::isnan(f_hi)) {
@@ -138,10 +169,10 @@ SolveOutcome Chain::solve(const SolveSpec& spec) {
   std::size_t chosen = roots.size();
   double best_slack = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < roots.size(); ++k) {
-    set_unknown(roots[k]);
+    if (margins.size() > 1) set_unknown(roots[k]);  // (one criterion: no other margin to check)
     double worst = std::numeric_limits<double>::infinity();
     for (std::size_t m = 0; m < margins.size(); ++m)
-      if (m != k) worst = std::min(worst, results_.value(margins[m]));
+      if (m != k) worst = std::min(worst, chain.results().value(margins[m]));
     if (!(worst >= -1e-9)) continue;
     if (chosen == roots.size() || worst < best_slack) chosen = k, best_slack = worst;
   }
@@ -156,27 +187,35 @@ SolveOutcome Chain::solve(const SolveSpec& spec) {
   return outcome;
 }
 
+SolveOutcome Chain::solve(const SolveSpec& spec) { return solve_one(*this, spec); }
+
+void solve_all(Chain& chain, std::vector<SolveOutcome>& outcomes) {
+  // Several solves form a design: repeat them in order until no unknown moves (they are usually decoupled,
+  // and then one pass suffices).
+  outcomes.clear();
+  std::vector<double> previous(chain.solves.size(), std::numeric_limits<double>::quiet_NaN());
+  for (int pass = 0; pass < 30 && !chain.solves.empty(); ++pass) {
+    outcomes.clear();
+    bool moved = false;
+    for (std::size_t i = 0; i < chain.solves.size(); ++i) {
+      outcomes.push_back(solve_one(chain, chain.solves[i]));
+      const double v = outcomes.back().value_si;
+      if (!(std::abs(v - previous[i]) <= 1e-12 * std::abs(v))) moved = true;
+      previous[i] = v;
+    }
+    if (!moved || chain.solves.size() == 1) break;
+  }
+  // Every solve ends with an evaluation at the parameters it leaves, so only a chain without solves needs one.
+  if (chain.solves.empty()) chain.evaluate();
+}
+
 Report Chain::run() {
   results_.clear_values();
   evaluate();
   Report report;
   report.sensor_file = sensor_file;
   report.sensor_name = sensor_name;
-  // Several solves form a design: repeat them in order until no unknown moves (they are usually decoupled,
-  // and then one pass suffices).
-  std::vector<double> previous(solves.size(), std::numeric_limits<double>::quiet_NaN());
-  for (int pass = 0; pass < 30 && !solves.empty(); ++pass) {
-    report.solves.clear();
-    bool moved = false;
-    for (std::size_t i = 0; i < solves.size(); ++i) {
-      report.solves.push_back(solve(solves[i]));
-      const double v = report.solves.back().value_si;
-      if (!(std::abs(v - previous[i]) <= 1e-12 * std::abs(v))) moved = true;
-      previous[i] = v;
-    }
-    if (!moved || solves.size() == 1) break;
-  }
-  evaluate();
+  solve_all(*this, report.solves);
   report.results.reserve(results_.size());
   for (std::size_t i = 0; i < results_.size(); ++i) {
     report.results.push_back(results_.info(i));

@@ -298,7 +298,7 @@ Chain load_sensor(const std::string& path, const std::vector<Override>& override
                                             "[[solve]] root of criteria margin", display));
     }
     // Stored through a public path: re-run so the chain writes solved values into these results.
-    chain.set_solve_result_ids(std::move(ids));
+    chain.set_solve_result_ids(ids);
   }
 
   if (const ConfigValue* expected = root.find("expected")) {

@@ -83,6 +83,7 @@ class CcdLine final : public Stage {
     k_working_ = params_.has("utilisation_working") ? params_.get("utilisation_working") : k_working_computed_;
 
     const bool paper_root = params_.text("sinc_root") == "paper";
+    time_pinned_ = params_.has("integration_time");
     sinc_root_ = paper_root ? physics::kolobrodov_sinc_half_root_printed : physics::sinc_half_contrast_root();
     element_ratio_ = physics::kolobrodov_system_element_ratio(sinc_root_);
 
@@ -121,7 +122,7 @@ class CcdLine final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double t = params_.has("integration_time") ? *pinned_time_ : physics::line_integration_time_s(*count_, *clock_);
+    const double t = time_pinned_ ? *pinned_time_ : physics::line_integration_time_s(*count_, *clock_);
     const double nee_working = physics::exposure_for_working_source(*nee_, k_reference_, k_working_);
     const double threshold = physics::threshold_image_irradiance_W_m2(nee_working, t);
     const double signal = c.light.signal.scale * signal_in_band_;
@@ -156,6 +157,7 @@ class CcdLine final : public Stage {
   double signal_in_band_ = 0, background_in_band_ = 0;
   double k_reference_ = 1, k_working_ = 1, k_reference_computed_ = 1, k_working_computed_ = 1;
   double sinc_root_ = 0.6, element_ratio_ = 1.49;
+  bool time_pinned_ = false;
   ResultId id_time_{}, id_k_ref_{}, id_k_work_{}, id_ratio_{}, id_nee_{}, id_nee_working_{}, id_threshold_{},
       id_signal_{}, id_snr_{}, id_line_{}, id_element_{}, id_nu_half_{}, id_nyquist_{}, id_mtf_nyquist_{}, id_element_ratio_{},
       id_system_element_{};

@@ -75,7 +75,8 @@ class Telescope final : public Stage {
     id_aperture_ = c.declare("aperture", "m", "input D", "cm");
     id_transmittance_ = c.declare("transmittance", "1", "input τ");
     id_obscuration_ = c.declare("obscuration", "1", "input ε (linear)");
-    if (params_.has("focal_length")) {
+    has_focal_length_ = params_.has("focal_length");
+    if (has_focal_length_) {
       id_focal_ = c.declare("focal_length", "m", "input f'", "mm");
       id_f_number_ = c.declare("f_number", "1", "N = f'/D");
     }
@@ -105,7 +106,7 @@ class Telescope final : public Stage {
       c.light.signal.scale *= radiance_to_irradiance;
       if (c.light.background.form == RadiationForm::focal_irradiance) c.light.background.scale *= radiance_to_irradiance;
     }
-    if (params_.has("focal_length")) {
+    if (has_focal_length_) {
       c.results.set(id_focal_, *focal_length_);
       c.results.set(id_f_number_, *focal_length_ / d);
     }
@@ -125,6 +126,7 @@ class Telescope final : public Stage {
   bool airy_, gaussian_;
   double first_dark_ring_v_ = 0, ring_obscuration_ = -1;
   RadiationForm form_ = RadiationForm::none;
+  bool has_focal_length_ = false;  // read once per spectral phase: evaluate() does no lookups by name
   std::optional<ResultId> target_lux_;
   ResultId id_area_{}, id_aperture_{}, id_transmittance_{}, id_focal_{}, id_f_number_{}, id_flux_{}, id_obscuration_{},
       id_psf_wavelength_{}, id_airy_radius_{}, id_gaussian_fwhm_{};

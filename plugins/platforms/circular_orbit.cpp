@@ -27,6 +27,7 @@ class CircularOrbit final : public Stage {
         gm_(p.handle("earth_gm")), pinned_speed_(p.handle("ground_speed")) {}
 
   void prepare(Context& c) override {
+    speed_pinned_ = params_.has("ground_speed");
     id_altitude_ = c.declare("altitude", "m", "input h", "km");
     id_tilt_ = c.declare("tilt", "rad", "input ω", "deg");
     id_orbit_speed_ = c.declare("orbital_speed", "m/s", "√(GM/(R+h)), circular orbit", "km/s");
@@ -43,12 +44,13 @@ class CircularOrbit final : public Stage {
     c.results.set(id_tilt_, *tilt_);
     c.results.set(id_orbit_speed_, physics::circular_orbit_speed_m_s(*altitude_, *gm_, *radius_));
     c.results.set(id_track_speed_, track);
-    c.results.set(id_speed_, params_.has("ground_speed") ? *pinned_speed_ : track);
+    c.results.set(id_speed_, speed_pinned_ ? *pinned_speed_ : track);
   }
 
  private:
   const Params& params_;
   const double *altitude_, *tilt_, *radius_, *gm_, *pinned_speed_;
+  bool speed_pinned_ = false;
   ResultId id_altitude_{}, id_tilt_{}, id_orbit_speed_{}, id_track_speed_{}, id_speed_{};
 };
 

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace {
@@ -129,11 +130,12 @@ class Sun final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double inverse_square = std::pow(constants::astronomical_unit_m / *distance_, 2);
+    const double au_over_d = constants::astronomical_unit_m / *distance_;
+    const double inverse_square = au_over_d * au_over_d;
     c.light.illumination_scale = inverse_square;
     c.results.set(id_total_, total_ * inverse_square);
     c.results.set(id_illuminance_, illuminance_ * inverse_square);
-    if (params_.has("illuminance")) c.results.set(id_illuminance_computed_, computed_illuminance_ * inverse_square);
+    if (id_illuminance_computed_) c.results.set(*id_illuminance_computed_, computed_illuminance_ * inverse_square);
     c.results.set(id_efficacy_, illuminance_ / total_);
     c.results.set(id_magnitude_, *magnitude_);
     c.results.set(id_distance_, *distance_);
@@ -150,8 +152,9 @@ class Sun final : public Stage {
   const Params& params_;
   const double* distance_;
   const double* magnitude_;
+  std::optional<ResultId> id_illuminance_computed_;  // only when the illuminance is pinned
   double total_ = 0, illuminance_ = 0, computed_illuminance_ = 0;
-  ResultId id_total_{}, id_illuminance_{}, id_illuminance_computed_{}, id_efficacy_{}, id_magnitude_{}, id_distance_{};
+  ResultId id_total_{}, id_illuminance_{}, id_efficacy_{}, id_magnitude_{}, id_distance_{};
   bool has_band_ = false, pinned_z_[2] = {false, false};
   double z_[2] = {0, 0}, z_computed_[2] = {0, 0};
   ResultId id_z_[2]{}, id_z_computed_[2]{}, id_band_{};

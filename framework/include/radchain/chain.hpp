@@ -104,7 +104,7 @@ class Chain {
   // Marks the spectral phase dirty (after a spectral parameter was replaced).
   void invalidate_spectra() { spectral_dirty_ = true; }
   // The results that report each solve's unknown, in the order of `solves` (set by load_sensor).
-  void set_solve_result_ids(std::vector<ResultId> ids) { solve_result_ids_ = std::move(ids); }
+  void set_solve_result_ids(const std::vector<ResultId>& ids);
 
   Results& results() { return results_; }
   const Results& results() const { return results_; }
@@ -119,7 +119,8 @@ class Chain {
   Results results_;
   Light light_;
   bool spectral_dirty_ = true;
-  std::vector<ResultId> solve_result_ids_;
+  // Each solve's unknown is echoed as a result: (result, the parameter's stable address), resolved once.
+  std::vector<std::pair<ResultId, const double*>> solved_parameters_;
 };
 
 // One `--set key=value` override: "optics.aperture=20 cm", "target.magnitude=15".

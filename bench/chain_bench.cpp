@@ -1,0 +1,110 @@
+// One sensor on one core (sensors/msx-sbv.toml, Pan 2010: limiting magnitude 15.5565 at SNR 5): the spectral phase,
+// the limiting-magnitude solve, one forward evaluation. Targets and results: docs/performance.md.
+#include "radchain/chain.hpp"
+#include "radchain/sweep.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+namespace {
+using namespace radchain;
+
+// benchmark::DoNotOptimize through a const reference: its read-write form ("+m,r") let GCC 12 lose a double
+// assigned in the loop (valgrind: uninitialised after the loop).
+template <class T>
+void keep(const T& value) {
+  benchmark::DoNotOptimize(value);
+}
+
+const std::string sbv = RADCHAIN_SOURCE_DIR "/sensors/msx-sbv.toml";
+
+void check_magnitude(benchmark::State& state, double magnitude) {
+  if (!(std::abs(magnitude - 15.5565) < 5e-5)) state.SkipWithError("the SBV limiting magnitude is not 15.5565");
+}
+
+// Target ≤ 5 µs: one limiting magnitude including all spectral integration (load excluded; the spectral phase,
+// Chain::invalidate_spectra() + prepare, included), as a sweep over a spectral parameter would pay at every point.
+void BM_SbvLimitingMagnitudeWithSpectralPhase(benchmark::State& state) {
+  Chain chain = load_sensor(sbv);
+  double* magnitude = chain.parameter("target.magnitude");
+  const double start = *magnitude;
+  std::vector<SolveOutcome> outcomes;
+  for (auto _ : state) {
+    *magnitude = start;
+    chain.invalidate_spectra();
+    solve_all(chain, outcomes);
+    keep(outcomes.front().value_si);
+  }
+  check_magnitude(state, outcomes.front().value_si);
+}
+BENCHMARK(BM_SbvLimitingMagnitudeWithSpectralPhase);
+
+// The same through Chain::run(), which also copies every result into a Report and checks [expected].
+void BM_SbvRunWithSpectralPhase(benchmark::State& state) {
+  Chain chain = load_sensor(sbv);
+  double* magnitude = chain.parameter("target.magnitude");
+  const double start = *magnitude;
+  double solved = 0;
+  for (auto _ : state) {
+    *magnitude = start;
+    chain.invalidate_spectra();
+    const Report report = chain.run();
+    solved = report.solves.front().value_si;
+    keep(solved);
+  }
+  check_magnitude(state, solved);
+}
+BENCHMARK(BM_SbvRunWithSpectralPhase);
+
+// The spectral phase alone (prepare of every stage, then one scalar evaluation).
+void BM_SbvSpectralPhase(benchmark::State& state) {
+  Chain chain = load_sensor(sbv);
+  for (auto _ : state) {
+    chain.invalidate_spectra();
+    chain.evaluate();
+  }
+}
+BENCHMARK(BM_SbvSpectralPhase);
+
+// The solve alone (the spectral phase is cached): what one point of an aperture sweep costs.
+void BM_SbvLimitingMagnitudeSolve(benchmark::State& state) {
+  Chain chain = load_sensor(sbv);
+  double* magnitude = chain.parameter("target.magnitude");
+  const double start = *magnitude;
+  std::vector<SolveOutcome> outcomes;
+  for (auto _ : state) {
+    *magnitude = start;
+    solve_all(chain, outcomes);
+    keep(outcomes.front().value_si);
+  }
+  check_magnitude(state, outcomes.front().value_si);
+  state.counters["evaluations"] = outcomes.front().iterations;
+}
+BENCHMARK(BM_SbvLimitingMagnitudeSolve);
+
+// One forward evaluation (the scalar phase of every stage).
+void BM_SbvForwardEvaluation(benchmark::State& state) {
+  Chain chain = load_sensor(sbv);
+  double* aperture = chain.parameter("optics.aperture");
+  const ResultId snr = *chain.results().find("detector.snr");
+  double d = 0.15;
+  for (auto _ : state) {
+    *aperture = d;
+    d = d < 0.3 ? d + 1e-7 : 0.15;
+    chain.evaluate();
+    keep(chain.results().value(snr));
+  }
+}
+BENCHMARK(BM_SbvForwardEvaluation);
+
+// Loading the sensor file (parse, validate, plugins, the first spectral phase): what a catalogue pays per file.
+void BM_SbvLoad(benchmark::State& state) {
+  for (auto _ : state) {
+    Chain chain = load_sensor(sbv);
+    keep(chain.stages.size());
+  }
+}
+BENCHMARK(BM_SbvLoad)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

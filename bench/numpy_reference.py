@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""What a user would otherwise write: the MSX SBV limiting magnitude (Pan 2010, sensors/msx-sbv.toml) in
+vectorised numpy, doing the same spectral work as radchain's spectral phase (E-490 AM0 table with CIE 1924 V(λ):
+illuminance and total; the photon integral over the detector band) and closing with Pan's eq. (11).
+
+    /usr/bin/python3 bench/numpy_reference.py          # Debian: apt-get install python3-numpy
+
+Prints the limiting magnitude (radchain: 15.5565) and the median times of
+  * one limiting magnitude including the spectral integration (files already loaded; with the illuminance and
+    total radchain also reports, and without them), and
+  * 1e6 vectorised evaluations over the aperture (closed form, no root finding).
+"""
+import pathlib
+import statistics
+import timeit
+
+import numpy as np
+
+SPECTRA = pathlib.Path(__file__).resolve().parent.parent / "spectra"
+H = 6.62607015e-34  # J s (exact, SI 2019)
+C = 299792458.0     # m/s (exact)
+
+
+def load(name, value_factor):
+    """spectra/*.csv: '#' provenance lines, a header wavelength_nm,<quantity>_<unit>, then rows. SI out."""
+    rows = [line for line in (SPECTRA / name).read_text().splitlines() if line and not line.startswith("#")][1:]
+    data = np.array([[float(x) for x in row.split(",")] for row in rows])
+    return data[:, 0] * 1e-9, data[:, 1] * value_factor
+
+
+def band_integral(lo, hi, *spectra, weight=None):
+    """∫ Π s_i(λ) w(λ) dλ by the trapezoid rule on the union of the grids (radchain's band_integral)."""
+    for w, _ in spectra:  # zero outside a table
+        lo, hi = max(lo, w[0]), min(hi, w[-1])
+    nodes = np.union1d(np.concatenate([w[(w > lo) & (w < hi)] for w, _ in spectra]), [lo, hi])
+    f = np.ones_like(nodes)
+    for w, v in spectra:
+        f *= np.interp(nodes, w, v, left=0.0, right=0.0)
+    if weight is not None:
+        f *= weight(nodes)
+    return np.trapz(f, nodes)
+
+
+SUN = load("am0_astm_e490_00a.csv", 1e9)       # W m-2 nm-1 -> W m-2 m-1
+V = load("cie_1924_photopic_V_1nm.csv", 1.0)
+
+# sensors/msx-sbv.toml (Pan 2010 Table 1)
+M_SUN, APERTURE, TRANSMITTANCE, QE, TIME = -26.73, 0.15, 0.56, 0.27, 0.625
+FULL_WELL, ADC_BITS, DARK_RATE, READ_NOISE, THRESHOLD = 1e5, 12, 18.0, 6.0, 5.0
+BAND = (0.3e-6, 0.9e-6)
+
+
+def noise_floor():
+    quantisation = FULL_WELL / (2**ADC_BITS * np.sqrt(12.0))  # Pan 2010 §3.2 as printed
+    return DARK_RATE * TIME + READ_NOISE**2 + quantisation
+
+
+def signal_at_threshold():
+    t2 = THRESHOLD**2  # Pan 2010 eq. (11)
+    return 0.5 * (t2 + np.sqrt(t2 * t2 + 4 * t2 * noise_floor()))
+
+
+def limiting_magnitude(aperture=APERTURE):
+    """One limiting magnitude, spectral integration included."""
+    lo, hi = max(SUN[0][0], V[0][0]), min(SUN[0][-1], V[0][-1])
+    illuminance = 683.0 * band_integral(lo, hi, SUN, V)  # what the sun stage reports
+    total = band_integral(SUN[0][0], SUN[0][-1], SUN)
+    efficacy = illuminance / total
+    photons = band_integral(*BAND, SUN, weight=lambda l: l / (H * C))  # photons s-1 m-2 per unit ratio
+    electrons_per_ratio = TIME * QE * TRANSMITTANCE * np.pi * aperture**2 / 4 * photons
+    return M_SUN - 2.5 * np.log10(signal_at_threshold() / electrons_per_ratio), efficacy
+
+
+PHOTONS = band_integral(*BAND, SUN, weight=lambda l: l / (H * C))
+
+
+def vectorised(apertures):
+    """The limiting magnitude at many apertures: the spectral integral done once, then closed-form arithmetic."""
+    electrons_per_ratio = TIME * QE * TRANSMITTANCE * np.pi * apertures**2 / 4 * PHOTONS
+    return M_SUN - 2.5 * np.log10(signal_at_threshold() / electrons_per_ratio)
+
+
+def limiting_magnitude_lean(aperture=APERTURE):
+    """The same without the sun's illuminance and total: only the integral the magnitude needs."""
+    photons = band_integral(*BAND, SUN, weight=lambda l: l / (H * C))
+    electrons_per_ratio = TIME * QE * TRANSMITTANCE * np.pi * aperture**2 / 4 * photons
+    return M_SUN - 2.5 * np.log10(signal_at_threshold() / electrons_per_ratio)
+
+
+def median_seconds(statement, number, repeat=7):
+    return statistics.median(t / number for t in timeit.repeat(statement, number=number, repeat=repeat))
+
+
+if __name__ == "__main__":
+    magnitude, _ = limiting_magnitude()
+    print(f"limiting magnitude (SBV, 15 cm): {magnitude:.6g}   (radchain: 15.5565)")
+    one = median_seconds(limiting_magnitude, number=2000)
+    print(f"one limiting magnitude with spectral integration: {one * 1e6:.1f} us (median of 7)")
+    lean = median_seconds(limiting_magnitude_lean, number=2000)
+    print(f"  the same, only the detector's photon integral: {lean * 1e6:.1f} us (median of 7)")
+    apertures = np.linspace(0.15, 0.30, 1_000_000)
+    many = median_seconds(lambda: vectorised(apertures), number=10)
+    print(f"1e6 vectorised evaluations over the aperture: {many * 1e3:.1f} ms (median of 7)")
+    print(f"numpy {np.__version__}")

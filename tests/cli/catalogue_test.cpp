@@ -1,0 +1,128 @@
+// `radchain catalogue`: rows per sensor, pass/fail logic, exit codes (0 ok, 1 a failed check, 2 bad input) and
+// the three formats. References: sensors/msx-sbv.toml (Pan 2010 Table 2: 15.55 ± 0.05; the chain gives 15.5565).
+#include "cli_helpers.hpp"
+#include "radchain/catalogue.hpp"
+#include "radchain/error.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sstream>
+
+namespace {
+using namespace radchain;
+using namespace radchain::test;
+
+enum { sensor, result, computed, reference, unit, delta, delta_pct, check, note };
+
+TEST(Catalogue, RowsOfTheSbvSensor) {
+  Chain chain = load_sensor(sbv_file);
+  const Report report = chain.run();
+  const auto rows = catalogue_rows(sbv_file, report, {"detector.snr", "no.such_result"});
+  ASSERT_EQ(rows.size(), 3u);  // the [expected] check (it covers the solve), then the two extra results
+  EXPECT_EQ(rows[0][sensor], "msx-sbv");
+  EXPECT_EQ(rows[0][result], "target.magnitude");
+  EXPECT_EQ(rows[0][computed], "15.5565");
+  EXPECT_EQ(rows[0][reference], "15.55");
+  EXPECT_EQ(rows[0][unit], "");
+  EXPECT_EQ(rows[0][check], "ok");
+  EXPECT_EQ(rows[0][note], "Pan 2010 Table 2 (design spec 15.5)");
+  // delta = 15.5565 - 15.55 in the reference's unit (none), and in percent of the reference.
+  EXPECT_NEAR(std::stod(rows[0][delta]), report.value("target.magnitude").value() - 15.55, 1e-6);
+  EXPECT_NEAR(std::stod(rows[0][delta_pct]), 100 * (report.value("target.magnitude").value() - 15.55) / 15.55, 1e-3);
+  EXPECT_EQ(rows[1][result], "detector.snr");
+  EXPECT_EQ(rows[1][computed], "5");
+  EXPECT_EQ(rows[1][check], "");
+  EXPECT_EQ(rows[2][note], "not computed by this sensor");
+}
+
+TEST(Catalogue, FailingExpectationExitsWith1) {
+  Scratch scratch;
+  write_text(scratch / "good.toml", read_text(sbv_file));
+  write_text(scratch / "wrong.toml", sbv_with("value = 15.55, tolerance = 0.05", "value = 14.0, tolerance = 0.05"));
+  const CliResult r = run_cli(scratch, "catalogue '" + scratch.path().string() + "'");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_NE(r.out.find("good "), std::string::npos) << r.out;
+  // The failing row names the sensor, its computed value, the reference and FAIL.
+  std::istringstream lines(r.out);
+  std::string line, wrong;
+  while (std::getline(lines, line))
+    if (line.rfind("wrong ", 0) == 0) wrong = line;
+  EXPECT_NE(wrong.find("15.5565"), std::string::npos) << wrong;
+  EXPECT_NE(wrong.find("14"), std::string::npos) << wrong;
+  EXPECT_NE(wrong.find("FAIL"), std::string::npos) << wrong;
+  EXPECT_NE(r.out.find("2 sensor files, 2 checks: 1 FAILED"), std::string::npos) << r.out;
+}
+
+TEST(Catalogue, AllPassingExitsWith0) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "catalogue '" + sbv_file + "' --format csv");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "sensor,result,computed,reference,unit,delta,delta_pct,check,note\n"
+            "msx-sbv,target.magnitude,15.5565,15.55,,+0.006505,+0.0418,ok,Pan 2010 Table 2 (design spec 15.5)\n");
+}
+
+TEST(Catalogue, BadInputFileExitsWith2AndTheOthersStillRun) {
+  Scratch scratch;
+  write_text(scratch / "a_good.toml", read_text(sbv_file));
+  write_text(scratch / "b_bad.toml", sbv_with("aperture = \"15 cm\"", "aperture = \"15 kg\""));
+  write_text(scratch / "c_wrong.toml", sbv_with("value = 15.55, tolerance = 0.05", "value = 14.0, tolerance = 0.05"));
+  const CliResult r = run_cli(scratch, "catalogue '" + scratch.path().string() + "' --format json");
+  EXPECT_EQ(r.exit_code, 2);
+  // One line on stderr: the file's message.
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("b_bad.toml:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("expected a length"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["rows"].size(), 3u);
+  EXPECT_EQ(j["rows"][0]["check"], "ok");
+  EXPECT_EQ(j["rows"][0]["computed"], 15.5565);
+  EXPECT_EQ(j["rows"][1]["sensor"], "b_bad");
+  EXPECT_EQ(j["rows"][1]["check"], "ERROR");
+  EXPECT_TRUE(j["rows"][1]["computed"].is_null());
+  EXPECT_EQ(j["rows"][2]["check"], "FAIL");
+  EXPECT_EQ(j["exit_code"], 2);
+  EXPECT_EQ(j["summary"], "3 sensor files, 2 checks: 1 FAILED, 1 file with bad input");
+}
+
+TEST(Catalogue, FailedSolveIsAFailedCheck) {
+  Scratch scratch;
+  write_text(scratch / "no_root.toml", sbv_with("bracket = [5, 25]", "bracket = [5, 6]"));
+  const CliResult r = run_cli(scratch, "catalogue '" + (scratch / "no_root.toml").string() + "' --format csv");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("[[solve]] failed"), std::string::npos) << r.out;
+}
+
+TEST(Catalogue, MissingPathIsBadInput) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "catalogue '" + (scratch / "nothing_here").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("no such file or folder"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(Catalogue, SetAppliesToEveryFile) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "catalogue '" + sbv_file + "' --set 'optics.aperture=\"30 cm\"' --format csv");
+  // Pan 2010 Table 2: "about 17" at 30 cm; the check against 15.55 fails.
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("msx-sbv,target.magnitude,17.0617,15.55"), std::string::npos) << r.out;
+}
+
+TEST(Catalogue, FilesOfAFolderAreSorted) {
+  Scratch scratch;
+  write_text(scratch / "b.toml", read_text(sbv_file));
+  write_text(scratch / "a.toml", read_text(sbv_file));
+  write_text(scratch / "notes.txt", "not a sensor");
+  const auto files = catalogue_files({scratch.path().string()});
+  ASSERT_EQ(files.size(), 2u);
+  EXPECT_EQ(fs::path(files[0]).filename(), "a.toml");
+  EXPECT_EQ(fs::path(files[1]).filename(), "b.toml");
+  fs::create_directories(scratch / "empty");
+  EXPECT_THROW(catalogue_files({(scratch / "empty").string()}), InputError);
+}
+
+}  // namespace
