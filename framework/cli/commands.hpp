@@ -52,6 +52,15 @@ struct SweepCommand {
 };
 int sweep(const SweepCommand& options);
 
+// MTF curves of a pushbroom design (Kolobrodov 1996 Fig. 2) as CSV (stdout or --out) and optionally a PNG.
+struct MtfCommand {
+  std::string sensor;
+  std::vector<std::string> sets;
+  std::string out;
+  std::string plot;
+};
+int mtf(const MtfCommand& options);
+
 struct MergeCommand {
   std::vector<std::string> shards;
   Output output;

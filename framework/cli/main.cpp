@@ -64,6 +64,13 @@ int main(int argc, char** argv) {
   add_output(sweep_cmd, sweep.output, "csv (default), text or json");
   add_batch(sweep_cmd, sweep.batch);
 
+  cli::MtfCommand mtf;
+  auto* mtf_cmd = app.add_subcommand("mtf", "MTF curves of a pushbroom design (objective, detector, system) as CSV and a plot");
+  mtf_cmd->add_option("sensor", mtf.sensor, "sensor TOML file with a ccd_line detector and an mtf_match criterion")->required();
+  mtf_cmd->add_option("--set", mtf.sets, "override a key: section.key=value (repeatable)");
+  mtf_cmd->add_option("--out", mtf.out, "CSV file (default: standard output)");
+  mtf_cmd->add_option("--plot", mtf.plot, "draw the curves to this PNG with gnuplot");
+
   cli::MergeCommand merge;
   auto* merge_cmd = app.add_subcommand("merge", "join shard files into the output of the unsharded job");
   merge_cmd->add_option("shards", merge.shards, "shard files written with --shard k/n")->required();
@@ -90,6 +97,7 @@ int main(int argc, char** argv) {
     if (*cmp_cmd) return cli::compare(compare);
     if (*sweep_cmd) return cli::sweep(sweep);
     if (*merge_cmd) return cli::merge(merge);
+    if (*mtf_cmd) return cli::mtf(mtf);
     if (*plugins_cmd) return cli::plugins();
     if (*describe_cmd) return cli::describe(describe_name);
   } catch (const InputError& error) {
