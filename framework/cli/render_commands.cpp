@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -115,6 +117,9 @@ PreviewOptions preview_of(const RenderCommand& c, bool space) {
 
 void write_outputs(const RenderCommand& c, const Image& image, const Header& header, bool space) {
   if (!c.out.empty()) {
+    const std::string extension = std::filesystem::path(c.out).extension().string();
+    if (extension != ".fits" && extension != ".fit" && extension != ".fts")
+      bad("--out", c.out, "expected a .fits file for the data (previews: --png frame.png or frame.tif)");
     write_fits(c.out, image, header, fits_type_of(c.fits_type, image));
     fmt::print("wrote {} ({}×{}, FITS, {} header cards)\n", c.out, image.width, image.height, header.size());
   }
