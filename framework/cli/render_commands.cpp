@@ -118,10 +118,15 @@ PreviewOptions preview_of(const RenderCommand& c, bool space) {
 void write_outputs(const RenderCommand& c, const Image& image, const Header& header, bool space) {
   if (!c.out.empty()) {
     const std::string extension = std::filesystem::path(c.out).extension().string();
-    if (extension != ".fits" && extension != ".fit" && extension != ".fts")
-      bad("--out", c.out, "expected a .fits file for the data (previews: --png frame.png or frame.tif)");
-    write_fits(c.out, image, header, fits_type_of(c.fits_type, image));
-    fmt::print("wrote {} ({}×{}, FITS, {} header cards)\n", c.out, image.width, image.height, header.size());
+    if (extension == ".fits" || extension == ".fit" || extension == ".fts") {
+      write_fits(c.out, image, header, fits_type_of(c.fits_type, image));
+      fmt::print("wrote {} ({}×{}, FITS, {} header cards)\n", c.out, image.width, image.height, header.size());
+    } else if (extension == ".tif" || extension == ".tiff" || extension == ".exr") {
+      write_float_image(c.out, image, header);
+      fmt::print("wrote {} ({}×{}, 32-bit float, {} metadata entries)\n", c.out, image.width, image.height, header.size());
+    } else {
+      bad("--out", c.out, "expected a .fits, .tif or .exr file for the data (previews: --png frame.png)");
+    }
   }
   if (!c.preview.empty()) {
     write_preview(c.preview, image, preview_of(c, space));

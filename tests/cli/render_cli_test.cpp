@@ -24,8 +24,12 @@ TEST(RenderCli, SpaceFrameWritesFitsAndPreview) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(RenderCli, DataMustGoToFits) {
-  EXPECT_EQ(run_cli("render " RADCHAIN_SOURCE_DIR "/sensors/kolobrodov-1996-ccd151-computed.toml --out /tmp/x.tif"), 2);
+TEST(RenderCli, EarthSceneAsFloatTiffAndBadExtension) {
+  const auto tif = std::filesystem::temp_directory_path() / "radchain_render_cli_scene.tif";
+  EXPECT_EQ(run_cli("render " RADCHAIN_SOURCE_DIR "/sensors/kolobrodov-1996-ccd151-computed.toml --out " + tif.string()), 0);
+  EXPECT_GT(std::filesystem::file_size(tif), 10000u);  // a 256×256 float32 scene at the designed 5 m GSD (compressed)
+  std::filesystem::remove(tif);
+  EXPECT_EQ(run_cli("render " RADCHAIN_SOURCE_DIR "/sensors/kolobrodov-1996-ccd151-computed.toml --out /tmp/x.jpg"), 2);
 }
 
 TEST(RenderCli, BadQuantityIsBadInput) {

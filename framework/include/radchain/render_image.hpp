@@ -63,6 +63,9 @@ FitsPixel fits_pixel_for(const Image& image);
 // hold a value throws std::invalid_argument) and the cards in order after the mandatory ones. Throws
 // std::runtime_error naming the path when OpenImageIO fails.
 void write_fits(const std::string& path, const Image& image, const Header& header, FitsPixel pixel = FitsPixel::float32);
+// The same data, unstretched, as 32-bit float TIFF or OpenEXR (by extension), the header cards as "radchain:KEY"
+// metadata: for tools that do not read FITS.
+void write_float_image(const std::string& path, const Image& image, const Header& header);
 
 // How integer pixels of a file are returned.
 enum class PixelValues {

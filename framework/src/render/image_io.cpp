@@ -174,6 +174,17 @@ void write_fits(const std::string& path, const Image& image, const Header& heade
   if (!out->close()) oiio_failure("cannot write", path, out->geterror());
 }
 
+void write_float_image(const std::string& path, const Image& image, const Header& header) {
+  if (image.empty()) throw std::invalid_argument("write_float_image: empty image");
+  OIIO::ImageSpec spec(image.width, image.height, 1, OIIO::TypeDesc::FLOAT);
+  for (const auto& card : header) spec.attribute("radchain:" + card.key, card_value_text(card));
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) oiio_failure("cannot write", path, {});
+  if (!out->open(path, spec)) oiio_failure("cannot write", path, out->geterror());
+  if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) oiio_failure("cannot write", path, out->geterror());
+  if (!out->close()) oiio_failure("cannot write", path, out->geterror());
+}
+
 ImageFile read_image(const std::string& path, PixelValues values) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) oiio_failure("cannot read", path, {});
