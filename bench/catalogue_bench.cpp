@@ -3,6 +3,8 @@
 #include "radchain/catalogue.hpp"
 #include "radchain/shard.hpp"
 
+#include "bench_common.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -14,12 +16,7 @@
 namespace {
 using namespace radchain;
 
-// benchmark::DoNotOptimize through a const reference: its read-write form ("+m,r") let GCC 12 lose a double
-// assigned in the loop (valgrind: uninitialised after the loop).
-template <class T>
-void keep(const T& value) {
-  benchmark::DoNotOptimize(value);
-}
+using bench::keep;
 namespace fs = std::filesystem;
 
 class ThousandFiles {

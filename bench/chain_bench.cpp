@@ -3,6 +3,8 @@
 #include "radchain/chain.hpp"
 #include "radchain/sweep.hpp"
 
+#include "bench_common.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -10,14 +12,9 @@
 namespace {
 using namespace radchain;
 
-// benchmark::DoNotOptimize through a const reference: its read-write form ("+m,r") let GCC 12 lose a double
-// assigned in the loop (valgrind: uninitialised after the loop).
-template <class T>
-void keep(const T& value) {
-  benchmark::DoNotOptimize(value);
-}
+using bench::keep;
 
-const std::string sbv = RADCHAIN_SOURCE_DIR "/sensors/msx-sbv.toml";
+const std::string& sbv = bench::sbv_sensor;
 
 void check_magnitude(benchmark::State& state, double magnitude) {
   if (!(std::abs(magnitude - 15.5565) < 5e-5)) state.SkipWithError("the SBV limiting magnitude is not 15.5565");

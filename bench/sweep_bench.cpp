@@ -4,6 +4,8 @@
 #include "radchain/shard.hpp"
 #include "radchain/sweep.hpp"
 
+#include "bench_common.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -13,14 +15,9 @@
 namespace {
 using namespace radchain;
 
-// benchmark::DoNotOptimize through a const reference: its read-write form ("+m,r") let GCC 12 lose a double
-// assigned in the loop (valgrind: uninitialised after the loop).
-template <class T>
-void keep(const T& value) {
-  benchmark::DoNotOptimize(value);
-}
+using bench::keep;
 
-const std::string sbv = RADCHAIN_SOURCE_DIR "/sensors/msx-sbv.toml";
+const std::string& sbv = bench::sbv_sensor;
 constexpr std::size_t million = 1'000'000;
 
 double aperture_at(std::size_t i) { return 0.15 + 0.15 * static_cast<double>(i) / static_cast<double>(million - 1); }

@@ -30,11 +30,6 @@ Override parse_override(const std::string& text) {
   return Override{text.substr(0, eq), text.substr(eq + 1)};
 }
 
-std::vector<Override> parse_overrides(const std::vector<std::string>& sets) {
-  std::vector<Override> out;
-  for (const auto& s : sets) out.push_back(parse_override(s));
-  return out;
-}
 
 std::string unquoted(std::string text) {
   if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = text.substr(1, text.size() - 2);
@@ -110,6 +105,12 @@ void print_description(const PluginInfo& info, const std::string& path) {
 }
 
 }  // namespace
+
+std::vector<Override> parse_overrides(const std::vector<std::string>& sets) {
+  std::vector<Override> out;
+  for (const auto& s : sets) out.push_back(parse_override(s));
+  return out;
+}
 
 int run(const RunOptions& options) {
   Chain chain = load_sensor(options.sensor, parse_overrides(options.sets));

@@ -2,10 +2,15 @@
 // The subcommands of the `radchain` CLI. main.cpp parses the command line into these option structs; each
 // command calls the framework (catalogue.hpp, compare.hpp, sweep.hpp, shard.hpp) and returns the exit code:
 // 0 ok, 1 a failed check, 2 bad input. Bad input is thrown as InputError and printed by main as one line.
+#include "radchain/chain.hpp"
+
 #include <string>
 #include <vector>
 
 namespace radchain::cli {
+
+// `--set section.key=value` options as overrides (one clear error line for a malformed one).
+std::vector<Override> parse_overrides(const std::vector<std::string>& sets);
 
 struct Output {
   std::string out;     // --out file ("" = stdout)

@@ -1,6 +1,8 @@
 // `radchain render` and `radchain validate`: option structs in, framework calls (radchain/render.hpp), exit code out.
 #include "render_commands.hpp"
 
+#include "commands.hpp"
+
 #include "radchain/chain.hpp"
 #include "radchain/error.hpp"
 #include "radchain/render.hpp"
@@ -21,18 +23,6 @@ using namespace radchain::render;
 
 [[noreturn]] void bad(const std::string& option, const std::string& value, const std::string& problem) {
   throw InputError(SourceLocation{option, 0, 0}, "", value, problem);
-}
-
-std::vector<Override> overrides_of(const std::vector<std::string>& sets) {
-  std::vector<Override> out;
-  for (const auto& s : sets) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos || eq == 0) bad("--set", s, "expected <section>.<key>=<value>, e.g. optics.aperture=\"20 cm\"");
-    std::string value = s.substr(eq + 1);
-    if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
-    out.push_back({s.substr(0, eq), value});
-  }
-  return out;
 }
 
 // "45 cm" → metres (si_unit "m"); a bare number only for dimensionless options.
@@ -234,7 +224,7 @@ int render_earth(Chain& chain, const Report& report, const RenderCommand& c) {
 }  // namespace
 
 int render_command(const RenderCommand& c) {
-  Chain chain = load_sensor(c.sensor, overrides_of(c.sets));
+  Chain chain = load_sensor(c.sensor, parse_overrides(c.sets));
   const Report report = chain.run();
   if (!report.all_passed()) fmt::print(stderr, "radchain render: {}: a solve or an [expected] check failed (rendering anyway)\n", c.sensor);
   if (is_point_target_sensor(chain)) return render_space(chain, report, c);
@@ -242,7 +232,7 @@ int render_command(const RenderCommand& c) {
 }
 
 int validate_command(const ValidateCommand& c) {
-  Chain chain = load_sensor(c.sensor, overrides_of(c.sets));
+  Chain chain = load_sensor(c.sensor, parse_overrides(c.sets));
   const Report report = chain.run();
   bool ok = true;
   auto verdict = [&](bool passed) {
