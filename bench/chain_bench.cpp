@@ -24,11 +24,11 @@ void check_magnitude(benchmark::State& state, double magnitude) {
 // Chain::invalidate_spectra() + prepare, included), as a sweep over a spectral parameter would pay at every point.
 void BM_SbvLimitingMagnitudeWithSpectralPhase(benchmark::State& state) {
   Chain chain = load_sensor(sbv);
-  double* magnitude = chain.parameter("target.magnitude");
-  const double start = *magnitude;
+  const ParameterRef magnitude = chain.parameter("target.magnitude");
+  const double start = magnitude.value();
   std::vector<SolveOutcome> outcomes;
   for (auto _ : state) {
-    *magnitude = start;
+    chain.set(magnitude, start);
     chain.invalidate_spectra();
     solve_all(chain, outcomes);
     keep(outcomes.front().value_si);
@@ -40,11 +40,11 @@ BENCHMARK(BM_SbvLimitingMagnitudeWithSpectralPhase);
 // The same through Chain::run(), which also copies every result into a Report and checks [expected].
 void BM_SbvRunWithSpectralPhase(benchmark::State& state) {
   Chain chain = load_sensor(sbv);
-  double* magnitude = chain.parameter("target.magnitude");
-  const double start = *magnitude;
+  const ParameterRef magnitude = chain.parameter("target.magnitude");
+  const double start = magnitude.value();
   double solved = 0;
   for (auto _ : state) {
-    *magnitude = start;
+    chain.set(magnitude, start);
     chain.invalidate_spectra();
     const Report report = chain.run();
     solved = report.solves.front().value_si;
@@ -67,11 +67,11 @@ BENCHMARK(BM_SbvSpectralPhase);
 // The solve alone (the spectral phase is cached): what one point of an aperture sweep costs.
 void BM_SbvLimitingMagnitudeSolve(benchmark::State& state) {
   Chain chain = load_sensor(sbv);
-  double* magnitude = chain.parameter("target.magnitude");
-  const double start = *magnitude;
+  const ParameterRef magnitude = chain.parameter("target.magnitude");
+  const double start = magnitude.value();
   std::vector<SolveOutcome> outcomes;
   for (auto _ : state) {
-    *magnitude = start;
+    chain.set(magnitude, start);
     solve_all(chain, outcomes);
     keep(outcomes.front().value_si);
   }
@@ -83,11 +83,11 @@ BENCHMARK(BM_SbvLimitingMagnitudeSolve);
 // One forward evaluation (the scalar phase of every stage).
 void BM_SbvForwardEvaluation(benchmark::State& state) {
   Chain chain = load_sensor(sbv);
-  double* aperture = chain.parameter("optics.aperture");
+  const ParameterRef aperture = chain.parameter("optics.aperture");
   const ResultId snr = *chain.results().find("detector.snr");
   double d = 0.15;
   for (auto _ : state) {
-    *aperture = d;
+    chain.set(aperture, d);
     d = d < 0.3 ? d + 1e-7 : 0.15;
     chain.evaluate();
     keep(chain.results().value(snr));

@@ -22,16 +22,16 @@ constexpr std::size_t million = 1'000'000;
 
 double aperture_at(std::size_t i) { return 0.15 + 0.15 * static_cast<double>(i) / static_cast<double>(million - 1); }
 
-// Forward evaluations on one core: set the aperture through its stable address, evaluate, read the SNR.
+// Forward evaluations on one core: set the aperture, evaluate (every result), read the SNR.
 void BM_MillionForwardEvaluations_OneCore(benchmark::State& state) {
   Chain chain = load_sensor(sbv);
-  double* aperture = chain.parameter("optics.aperture");
+  const ParameterRef aperture = chain.parameter("optics.aperture");
   const ResultId snr = *chain.results().find("detector.snr");
   chain.evaluate();
   for (auto _ : state) {
     double sum = 0;
     for (std::size_t i = 0; i < million; ++i) {
-      *aperture = aperture_at(i);
+      chain.set(aperture, aperture_at(i));
       chain.evaluate();
       sum += chain.results().value(snr);
     }
@@ -47,11 +47,11 @@ void BM_MillionForwardEvaluations_AllCores(benchmark::State& state) {
     parallel_chunks(million, 4096, [&](std::size_t slot, std::size_t begin, std::size_t end) {
       if (!chains[slot]) chains[slot] = std::make_unique<Chain>(load_sensor(sbv));
       Chain& chain = *chains[slot];
-      double* aperture = chain.parameter("optics.aperture");
+      const ParameterRef aperture = chain.parameter("optics.aperture");
       const ResultId snr = *chain.results().find("detector.snr");
       double sum = 0;
       for (std::size_t i = begin; i < end; ++i) {
-        *aperture = aperture_at(i);
+        chain.set(aperture, aperture_at(i));
         chain.evaluate();
         sum += chain.results().value(snr);
       }

@@ -283,13 +283,13 @@ CompareInput load_compare_input(const std::string& path, const std::vector<Overr
   } else {
     input.chain.emplace(load_sensor(path, overrides));
     // run() leaves the solved values in the unknowns; the inputs compared are the file's (as validated).
-    std::vector<std::pair<double*, double>> unknowns;
+    std::vector<std::pair<ParameterRef, double>> unknowns;
     for (const auto& s : input.chain->solves) {
-      double* p = input.chain->parameter(s.unknown);
-      unknowns.emplace_back(p, *p);
+      const ParameterRef p = input.chain->parameter(s.unknown);
+      unknowns.emplace_back(p, p.value());
     }
     input.report = input.chain->run();
-    for (auto& [p, v] : unknowns) *p = v;
+    for (const auto& [p, v] : unknowns) input.chain->set(p, v);
   }
   input.sensor_name = input.report.sensor_name;
   return input;

@@ -52,12 +52,30 @@ std::string to_string(RadiationForm form) {
   return "?";
 }
 
-ResultId Context::declare(const std::string& name, const std::string& si_unit, const std::string& equation,
-                          const std::string& display_unit) {
-  return results.declare(section + "." + name, si_unit, plugin, equation, display_unit);
+ResultId Context::declare(std::string_view name, std::string_view si_unit, std::string_view equation,
+                          std::string_view display_unit) {
+  if (declarations_ && next_declaration_ < declarations_->size()) {
+    // The same declaration as at the last spectral phase: "<section>.<name>" with the same unit and equation.
+    const ResultId id = (*declarations_)[next_declaration_];
+    const ResultInfo& info = results.info(id);
+    const std::string_view known = info.name;
+    if (known.size() == section.size() + 1 + name.size() && known.ends_with(name) && known.starts_with(section) &&
+        known[section.size()] == '.' && info.si_unit == si_unit && info.equation == equation) {
+      ++next_declaration_;
+      return id;
+    }
+  }
+  const ResultId id = results.declare(section + "." + std::string(name), std::string(si_unit), plugin, std::string(equation),
+                                      std::string(display_unit));
+  if (declarations_) {
+    declarations_->resize(next_declaration_);  // a stage that declares differently from now on: forget the rest
+    declarations_->push_back(id);
+    ++next_declaration_;
+  }
+  return id;
 }
 
-ResultId Context::require(const std::string& qualified_name) const {
+ResultId Context::require(std::string_view qualified_name) const {
   if (auto id = results.find(qualified_name)) return *id;
   throw InputError({}, fmt::format("{} (plugin \"{}\")", section, plugin), "",
                    fmt::format("needs the result \"{}\", which no earlier stage provides: the chain's plugins do not fit together",

@@ -18,14 +18,14 @@ ResultId Results::declare(const std::string& name, const std::string& si_unit, c
   }
   ResultInfo info{name, si_unit, display_unit.empty() ? si_unit : display_unit, 1.0, stage, equation};
   if (info.display_unit != si_unit) info.display_factor = 1.0 / units::conversion(info.display_unit, si_unit).factor;
+  index_.emplace(info.name, infos_.size());
   infos_.push_back(std::move(info));
   values_.push_back(std::numeric_limits<double>::quiet_NaN());
   return infos_.size() - 1;
 }
 
-std::optional<ResultId> Results::find(const std::string& name) const {
-  for (std::size_t i = 0; i < infos_.size(); ++i)
-    if (infos_[i].name == name) return i;
+std::optional<ResultId> Results::find(std::string_view name) const {
+  if (auto it = index_.find(name); it != index_.end()) return it->second;
   return std::nullopt;
 }
 

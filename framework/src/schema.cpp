@@ -97,34 +97,34 @@ Params::Params(std::string section, std::string plugin, const Schema* schema)
 
 std::string Params::context() const { return fmt::format("{} (plugin \"{}\")", section_, plugin_); }
 
-const Params::Entry& Params::entry(const std::string& key) const {
+const Params::Entry& Params::entry(std::string_view key) const {
   for (const auto& e : entries_)
     if (e.spec->key == key) return e;
-  throw std::logic_error("plugin \"" + plugin_ + "\" asked for \"" + key + "\", which is not in its schema");
+  throw std::logic_error("plugin \"" + plugin_ + "\" asked for \"" + std::string(key) + "\", which is not in its schema");
 }
-Params::Entry& Params::entry(const std::string& key) {
+Params::Entry& Params::entry(std::string_view key) {
   return const_cast<Entry&>(static_cast<const Params&>(*this).entry(key));
 }
 
-bool Params::has(const std::string& key) const { return entry(key).present; }
-bool Params::given(const std::string& key) const { return entry(key).given; }
+bool Params::has(std::string_view key) const { return entry(key).present; }
+bool Params::given(std::string_view key) const { return entry(key).given; }
 
-double Params::get(const std::string& key) const {
+double Params::get(std::string_view key) const {
   const Entry& e = entry(key);
-  if (!e.present) throw std::logic_error("parameter \"" + key + "\" of \"" + plugin_ + "\" has no value");
+  if (!e.present) throw std::logic_error("parameter \"" + std::string(key) + "\" of \"" + plugin_ + "\" has no value");
   return e.number;
 }
-std::optional<double> Params::maybe(const std::string& key) const {
+std::optional<double> Params::maybe(std::string_view key) const {
   const Entry& e = entry(key);
   return e.present ? std::optional<double>(e.number) : std::nullopt;
 }
-const double* Params::handle(const std::string& key) const { return &entry(key).number; }
-std::int64_t Params::integer(const std::string& key) const { return static_cast<std::int64_t>(get(key)); }
-const std::string& Params::text(const std::string& key) const { return entry(key).text; }
-bool Params::flag(const std::string& key) const { return entry(key).flag; }
-const Spectrum& Params::spectrum(const std::string& key) const {
+const double* Params::handle(std::string_view key) const { return &entry(key).number; }
+std::int64_t Params::integer(std::string_view key) const { return static_cast<std::int64_t>(get(key)); }
+const std::string& Params::text(std::string_view key) const { return entry(key).text; }
+bool Params::flag(std::string_view key) const { return entry(key).flag; }
+const Spectrum& Params::spectrum(std::string_view key) const {
   const Entry& e = entry(key);
-  if (!e.spectrum) throw std::logic_error("parameter \"" + key + "\" of \"" + plugin_ + "\" has no spectrum");
+  if (!e.spectrum) throw std::logic_error("parameter \"" + std::string(key) + "\" of \"" + plugin_ + "\" has no spectrum");
   return *e.spectrum;
 }
 

@@ -1,8 +1,9 @@
 #include "radchain/spectrum.hpp"
 
+#include "radchain/constants.hpp"
+
 #include <algorithm>
-#include <array>
-#include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -106,107 +107,23 @@ void merge_nodes(std::initializer_list<const Spectrum*> spectra, double lo_m, do
   nodes.resize(static_cast<std::size_t>(out - nodes.data()));
 }
 
-// f[i] *= s(x[i]) for increasing x: Spectrum::operator()(double)'s arithmetic, bit for bit, in three runs (below
-// the grid, inside it, above it) so that the inner loop has no boundary tests.
-void multiply_by(const Spectrum& s, const double* x, double* f, std::size_t n) {
-  const Eigen::Index m = s.size();
-  if (m == 0) {
-    for (std::size_t i = 0; i < n; ++i) f[i] *= 0.0;
-    return;
-  }
-  const double* w = s.wavelength_m().data();
-  const double* v = s.value().data();
-  const bool clamp = s.extrapolation() == Extrapolation::clamp;
-  const double w_first = w[0], w_last = w[m - 1];
-  std::size_t i = 0;
-  for (; i < n && x[i] <= w_first; ++i) f[i] *= (x[i] == w_first || clamp) ? v[0] : 0.0;
-  Eigen::Index hi = 1;
-  for (; i < n && x[i] < w_last; ++i) {
-    const double xi = x[i];
-    while (w[hi] <= xi) ++hi;  // first grid point > x
-    const double t = (xi - w[hi - 1]) / (w[hi] - w[hi - 1]);
-    f[i] *= v[hi - 1] + t * (v[hi] - v[hi - 1]);
-  }
-  for (; i < n; ++i) f[i] *= (x[i] == w_last || clamp) ? v[m - 1] : 0.0;
-}
-
-// Unweighted band integrals of large tables, remembered per thread with a copy of their inputs: a chain whose
-// spectral phase re-runs (a sweep over a band limit, a solve over a spectral parameter) integrates the same source
-// table again and again (the Sun's AM0 table with V(λ), its total). An entry is used only when every input is
-// equal bit for bit, so the result is the one computing would give.
-class IntegralMemo {
- public:
-  static constexpr std::size_t min_points = 256;  // below this, integrating is cheaper than comparing
-
-  const double* find(std::initializer_list<const Spectrum*> spectra, double lo, double hi) const {
-    for (const Entry& e : entries_)
-      if (e.matches(spectra, lo, hi)) return &e.result;
-    return nullptr;
-  }
-
-  void store(std::initializer_list<const Spectrum*> spectra, double lo, double hi, double result) {
-    Entry& e = entries_[next_++ % entries_.size()];
-    e.lo = lo, e.hi = hi, e.result = result, e.count = spectra.size();
-    e.data.clear();
-    std::size_t i = 0;
-    for (const Spectrum* s : spectra) {
-      e.rule[i] = s->extrapolation();
-      e.size[i] = s->size();
-      e.data.insert(e.data.end(), s->wavelength_m().data(), s->wavelength_m().data() + s->size());
-      e.data.insert(e.data.end(), s->value().data(), s->value().data() + s->size());
-      ++i;
-    }
-  }
-
- private:
-  struct Entry {
-    std::size_t count = 0;  // 0: empty
-    double lo = 0, hi = 0, result = 0;
-    Extrapolation rule[8]{};
-    Eigen::Index size[8]{};
-    std::vector<double> data;  // per spectrum: its wavelengths, then its values
-
-    bool matches(std::initializer_list<const Spectrum*> spectra, double lo_m, double hi_m) const {
-      if (count == 0 || count != spectra.size() || lo != lo_m || hi != hi_m) return false;
-      std::size_t i = 0;
-      for (const Spectrum* s : spectra) {
-        if (rule[i] != s->extrapolation() || size[i] != s->size()) return false;
-        ++i;
-      }
-      const double* stored = data.data();
-      for (const Spectrum* s : spectra) {
-        const std::size_t bytes = static_cast<std::size_t>(s->size()) * sizeof(double);
-        if (std::memcmp(stored, s->wavelength_m().data(), bytes) != 0) return false;
-        stored += s->size();
-        if (std::memcmp(stored, s->value().data(), bytes) != 0) return false;
-        stored += s->size();
-      }
-      return true;
-    }
-  };
-  std::array<Entry, 8> entries_;
-  std::size_t next_ = 0;
-};
-
-// Scratch buffers of band_integral, reused between calls of a thread (a weight that itself integrates gets
-// buffers of its own).
-struct IntegralBuffers {
-  std::vector<double> nodes, values;
-  bool busy = false;
-};
-
 }  // namespace
 
-Spectrum::Spectrum(Eigen::ArrayXd wavelength_m, Eigen::ArrayXd value, std::string unit, Extrapolation extrapolation)
-    : wavelength_m_(std::move(wavelength_m)),
-      value_(std::move(value)),
-      unit_(std::move(unit)),
-      extrapolation_(extrapolation) {
-  if (wavelength_m_.size() != value_.size()) throw std::invalid_argument("spectrum: grid and values differ in size");
-  if (wavelength_m_.size() < 2) throw std::invalid_argument("spectrum: fewer than 2 points");
-  for (Eigen::Index i = 1; i < wavelength_m_.size(); ++i)
-    if (!(wavelength_m_(i) > wavelength_m_(i - 1)))
+Spectrum::Spectrum(Eigen::ArrayXd wavelength_m, Eigen::ArrayXd value, std::string unit, Extrapolation extrapolation) {
+  if (wavelength_m.size() != value.size()) throw std::invalid_argument("spectrum: grid and values differ in size");
+  if (wavelength_m.size() < 2) throw std::invalid_argument("spectrum: fewer than 2 points");
+  for (Eigen::Index i = 1; i < wavelength_m.size(); ++i)
+    if (!(wavelength_m(i) > wavelength_m(i - 1)))
       throw std::invalid_argument("spectrum: wavelengths are not strictly increasing");
+  const Eigen::Index n = wavelength_m.size();
+  Eigen::ArrayXd slope = (value.tail(n - 1) - value.head(n - 1)) / (wavelength_m.tail(n - 1) - wavelength_m.head(n - 1));
+  data_ = std::make_shared<const Data>(
+      Data{std::move(wavelength_m), std::move(value), std::move(slope), std::move(unit), extrapolation});
+}
+
+const Spectrum::Data& Spectrum::data() const {
+  static const Data empty_data{};
+  return data_ ? *data_ : empty_data;
 }
 
 Spectrum Spectrum::constant(double value, std::string unit, double lo_m, double hi_m) {
@@ -224,21 +141,18 @@ Spectrum Spectrum::sampled(const Eigen::ArrayXd& wavelength_m, const std::functi
 }
 
 double Spectrum::operator()(double x) const {
-  const Eigen::Index n = wavelength_m_.size();
+  const Eigen::ArrayXd& w = wavelength_m();
+  const Eigen::ArrayXd& v = value();
+  const Eigen::Index n = w.size();
   if (n == 0) return 0.0;
-  if (x <= wavelength_m_(0)) {
-    if (x == wavelength_m_(0) || extrapolation_ == Extrapolation::clamp) return value_(0);
-    return 0.0;
-  }
-  if (x >= wavelength_m_(n - 1)) {
-    if (x == wavelength_m_(n - 1) || extrapolation_ == Extrapolation::clamp) return value_(n - 1);
-    return 0.0;
-  }
-  const double* begin = wavelength_m_.data();
+  const bool clamp = extrapolation() == Extrapolation::clamp;
+  if (x <= w(0)) return (x == w(0) || clamp) ? v(0) : 0.0;
+  if (x >= w(n - 1)) return (x == w(n - 1) || clamp) ? v(n - 1) : 0.0;
+  const double* begin = w.data();
   const Eigen::Index hi = std::upper_bound(begin, begin + n, x) - begin;  // first grid point > x
   const Eigen::Index lo = hi - 1;
-  const double t = (x - wavelength_m_(lo)) / (wavelength_m_(hi) - wavelength_m_(lo));
-  return value_(lo) + t * (value_(hi) - value_(lo));
+  const double t = (x - w(lo)) / (w(hi) - w(lo));
+  return v(lo) + t * (v(hi) - v(lo));
 }
 
 Eigen::ArrayXd Spectrum::operator()(const Eigen::ArrayXd& x) const {
@@ -249,34 +163,34 @@ Eigen::ArrayXd Spectrum::operator()(const Eigen::ArrayXd& x) const {
 }
 
 Spectrum Spectrum::scaled(double k, std::string unit) const {
-  return Spectrum(wavelength_m_, value_ * k, unit.empty() ? unit_ : std::move(unit), extrapolation_);
+  return Spectrum(wavelength_m(), value() * k, unit.empty() ? this->unit() : std::move(unit), extrapolation());
 }
 
 Spectrum Spectrum::resampled(const Eigen::ArrayXd& grid) const {
-  return Spectrum(grid, (*this)(grid), unit_, extrapolation_);
+  return Spectrum(grid, (*this)(grid), unit(), extrapolation());
 }
 
 Spectrum Spectrum::product(const Spectrum& other, std::string unit) const {
   // Where one factor is zero by extrapolation the product is zero: keep only the overlap of the supports.
   double lo = std::min(min_wavelength_m(), other.min_wavelength_m());
   double hi = std::max(max_wavelength_m(), other.max_wavelength_m());
-  if (extrapolation_ == Extrapolation::zero) lo = std::max(lo, min_wavelength_m()), hi = std::min(hi, max_wavelength_m());
-  if (other.extrapolation_ == Extrapolation::zero)
+  if (extrapolation() == Extrapolation::zero) lo = std::max(lo, min_wavelength_m()), hi = std::min(hi, max_wavelength_m());
+  if (other.extrapolation() == Extrapolation::zero)
     lo = std::max(lo, other.min_wavelength_m()), hi = std::min(hi, other.max_wavelength_m());
   if (!(hi > lo)) throw std::invalid_argument("spectrum product: the two spectra do not overlap");
   const Eigen::ArrayXd grid = union_grid({this, &other}, lo, hi);
-  const Extrapolation rule = (extrapolation_ == Extrapolation::clamp && other.extrapolation_ == Extrapolation::clamp)
+  const Extrapolation rule = (extrapolation() == Extrapolation::clamp && other.extrapolation() == Extrapolation::clamp)
                                  ? Extrapolation::clamp
                                  : Extrapolation::zero;
-  return Spectrum(grid, (*this)(grid) * other(grid), unit.empty() ? unit_ + " " + other.unit_ : std::move(unit),
+  return Spectrum(grid, (*this)(grid) * other(grid), unit.empty() ? this->unit() + " " + other.unit() : std::move(unit),
                   rule);
 }
 
-double Spectrum::peak_value() const { return value_.maxCoeff(); }
+double Spectrum::peak_value() const { return value().maxCoeff(); }
 double Spectrum::peak_wavelength_m() const {
   Eigen::Index i = 0;
-  value_.maxCoeff(&i);
-  return wavelength_m_(i);
+  value().maxCoeff(&i);
+  return wavelength_m()(i);
 }
 
 double Spectrum::integral(double lo_m, double hi_m) const { return band_integral({this}, lo_m, hi_m); }
@@ -292,49 +206,161 @@ Eigen::ArrayXd union_grid(std::initializer_list<const Spectrum*> spectra, double
   return Eigen::Map<Eigen::ArrayXd>(nodes.data(), static_cast<Eigen::Index>(nodes.size()));
 }
 
-double band_integral(std::initializer_list<const Spectrum*> spectra, double lo_m, double hi_m,
-                     const std::function<double(double)>& weight) {
+namespace {
+
+constexpr double photons_per_joule_per_metre = 1.0 / (constants::planck_J_s * constants::speed_of_light_m_s);
+
+// One spectrum walked along increasing abscissae: `next` is the first grid index with λ ≥ x.
+struct Track {
+  const double *w, *v, *slope;
+  Eigen::Index n, next;
+  bool clamp;
+
+  Track(const Spectrum& s, double x, const double* slopes)
+      : w(s.wavelength_m().data()), v(s.value().data()), slope(slopes), n(s.size()),
+        next(std::lower_bound(w, w + n, x) - w), clamp(s.extrapolation() == Extrapolation::clamp) {}
+  Track(const Track& t, double x) : Track(t) { next = std::lower_bound(w, w + n, x) - w; }
+  // The value at x, for w[next - 1] < x ≤ w[next] (linear, through the precomputed slope), or outside the grid.
+  double at(double x) const {
+    if (next == 0) return (clamp || x == w[0]) ? v[0] : 0.0;
+    if (next == n) return clamp ? v[n - 1] : 0.0;
+    return x == w[next] ? v[next] : v[next - 1] + (x - w[next - 1]) * slope[next - 1];  // exact at the nodes
+  }
+  double next_node() const { return next < n ? w[next] : std::numeric_limits<double>::infinity(); }
+};
+
+// K ≥ 2 spectra: the trapezoid on the merged grids, streaming (no node array). Every track's next node is ≥ the
+// current one, so the next node is their minimum, and each track advances by at most one node per step.
+template <std::size_t K>
+double merged_integral(Track (&tracks)[K], double lo, double hi, Weight weight) {
+  auto integrand = [&](double x) {
+    double y = weight == Weight::photons ? x * photons_per_joule_per_metre : 1.0;
+    for (const Track& t : tracks) y *= t.at(x);
+    return y;
+  };
+  double x_prev = lo, y_prev = integrand(lo), sum = 0.0;
+  for (Track& t : tracks) t.next += (t.next < t.n && t.w[t.next] <= lo);
+  while (true) {
+    double x = hi;
+    for (const Track& t : tracks) x = std::min(x, t.next_node());
+    const double y = integrand(x);
+    sum += (x - x_prev) * (y + y_prev);
+    if (x >= hi) break;
+    for (Track& t : tracks) t.next += (t.next < t.n && t.w[t.next] <= x);
+    x_prev = x, y_prev = y;
+  }
+  return 0.5 * sum;
+}
+
+// Two zero-extrapolated spectra (a source times a response: the common case). The limits lie inside both grids,
+// so every node between them has a segment on each side and the loop needs no boundary tests: values come from
+// the segment's right end, f = v[i] − (λ[i] − x)·slope, which is exact at the spectrum's own nodes.
+double pair_integral(const Track& a, const Track& b, double lo, double hi, Weight weight) {
+  const double k = weight == Weight::photons ? photons_per_joule_per_metre : 0.0;
+  auto weighted = [&](double x, double y) { return weight == Weight::photons ? y * x * k : y; };
+  const double *wa = a.w, *va = a.v, *sa = a.slope, *wb = b.w, *vb = b.v, *sb = b.slope;
+  Eigen::Index ia = std::upper_bound(wa, wa + a.n, lo) - wa, ib = std::upper_bound(wb, wb + b.n, lo) - wb;
+  double x_prev = lo, y_prev = weighted(lo, a.at(lo) * b.at(lo)), sum = 0.0;
+  // Nodes strictly inside (lo, hi): ia, ib < n because hi ≤ both grids' last points. Branches, not selects: the
+  // grids interleave in patterns the predictor learns, and a predicted branch takes the index update off the
+  // loop's critical path.
+  while (true) {
+    const double xa = wa[ia], xb = wb[ib];
+    double x, y;
+    if (xa < xb) {
+      x = xa;
+      y = va[ia] * (vb[ib] - (xb - x) * sb[ib - 1]);
+      ++ia;
+    } else if (xb < xa) {
+      x = xb;
+      y = (va[ia] - (xa - x) * sa[ia - 1]) * vb[ib];
+      ++ib;
+    } else {
+      x = xa;
+      y = va[ia] * vb[ib];
+      ++ia, ++ib;
+    }
+    if (x >= hi) break;
+    y = weighted(x, y);
+    sum += (x - x_prev) * (y + y_prev);
+    x_prev = x, y_prev = y;
+  }
+  const Track end_a(a, hi), end_b(b, hi);
+  const double y_hi = weighted(hi, end_a.at(hi) * end_b.at(hi));
+  return 0.5 * (sum + (hi - x_prev) * (y_hi + y_prev));
+}
+
+// One spectrum: its own grid between the limits, the end values interpolated; the inner sum is one Eigen
+// reduction over the table itself.
+double single_integral(const Spectrum& s, const double* slopes, double lo, double hi, Weight weight) {
+  const double* w = s.wavelength_m().data();
+  const Eigen::Index n = s.size();
+  const Track at_lo(s, lo, slopes), at_hi(s, hi, slopes);
+  const double k = weight == Weight::photons ? photons_per_joule_per_metre : 0.0;
+  auto weighted = [&](double x, double y) { return weight == Weight::photons ? y * x * k : y; };
+  const double y_lo = weighted(lo, at_lo.at(lo)), y_hi = weighted(hi, at_hi.at(hi));
+  const Eigen::Index first = std::upper_bound(w, w + n, lo) - w;  // interior nodes: lo < w[i] < hi
+  const Eigen::Index last = at_hi.next;                           // first index with w ≥ hi
+  if (first >= last) return 0.5 * (hi - lo) * (y_hi + y_lo);
+  const Eigen::Index m = last - first;
+  const Eigen::Map<const Eigen::ArrayXd> x(w + first, m), v(s.value().data() + first, m);
+  double inner = 0.0;
+  if (m > 1) {
+    if (weight == Weight::photons)
+      inner = ((x.tail(m - 1) - x.head(m - 1)) * (v.tail(m - 1) * x.tail(m - 1) + v.head(m - 1) * x.head(m - 1))).sum() * k;
+    else
+      inner = ((x.tail(m - 1) - x.head(m - 1)) * (v.tail(m - 1) + v.head(m - 1))).sum();
+  }
+  const double y_first = weighted(x(0), v(0)), y_last = weighted(x(m - 1), v(m - 1));
+  return 0.5 * ((x(0) - lo) * (y_first + y_lo) + inner + (hi - x(m - 1)) * (y_hi + y_last));
+}
+
+}  // namespace
+
+double band_integral(std::initializer_list<const Spectrum*> spectra, double lo_m, double hi_m, Weight weight) {
   // A zero-extrapolated spectrum is 0 outside its grid, and so is the product: integrate over the overlap
   // only. Otherwise the trapezoid from a node outside the grid to the grid's first point would ramp from 0
   // to the end value and add area the function does not have (a spectrum of 1 on [1, 2] integrated over
   // [0, 3] gave 2 instead of 1).
+  double factor = 1.0;  // constant spectra (a flat transmittance) multiply; their grids add no nodes
+  const Spectrum* varying[8];
+  std::size_t k = 0;
   for (const Spectrum* s : spectra) {
-    if (s->extrapolation() != Extrapolation::zero) continue;
-    if (s->empty()) return 0.0;
-    lo_m = std::max(lo_m, s->min_wavelength_m());
-    hi_m = std::min(hi_m, s->max_wavelength_m());
+    if (s->extrapolation() == Extrapolation::zero) {
+      if (s->empty()) return 0.0;
+      lo_m = std::max(lo_m, s->min_wavelength_m());
+      hi_m = std::min(hi_m, s->max_wavelength_m());
+    }
+    if (is_constant(*s)) factor *= s->value()(0);
+    else if (k < std::size(varying)) varying[k++] = s;
+    else throw std::invalid_argument("band_integral: more than 8 spectra in one product");
   }
   if (!(hi_m > lo_m)) return 0.0;
-  // No allocation in the steady state: a sweep over a spectral parameter integrates at every point.
-  thread_local IntegralBuffers shared;
-  IntegralBuffers own;
-  IntegralBuffers& buffers = shared.busy ? own : shared;
-  buffers.busy = true;
-  struct Release {
-    IntegralBuffers& b;
-    ~Release() { b.busy = false; }
-  } release{buffers};
-  thread_local IntegralMemo memo;
-  std::size_t points = 0;
-  for (const Spectrum* s : spectra) points += static_cast<std::size_t>(s->size());
-  const bool memoised = !weight && points >= IntegralMemo::min_points && spectra.size() <= 8;
-  if (memoised)
-    if (const double* known = memo.find(spectra, lo_m, hi_m)) return *known;
-
-  std::vector<double>& grid = buffers.nodes;
-  std::vector<double>& f = buffers.values;
-  merge_nodes(spectra, lo_m, hi_m, grid);
-  const Eigen::Index n = static_cast<Eigen::Index>(grid.size());
-  f.assign(grid.size(), 1.0);
-  for (const Spectrum* s : spectra) multiply_by(*s, grid.data(), f.data(), grid.size());
-  if (weight)
-    for (std::size_t i = 0; i < grid.size(); ++i) f[i] *= weight(grid[i]);
-  // The trapezoid sum as one Eigen reduction over unaligned blocks: the summation order, hence every bit of the
-  // result, is that of the array expression used before the buffers were reused.
-  const Eigen::Map<const Eigen::ArrayXd> x(grid.data(), n), y(f.data(), n);
-  const double result = 0.5 * ((x.tail(n - 1) - x.head(n - 1)) * (y.tail(n - 1) + y.head(n - 1))).sum();
-  if (memoised) memo.store(spectra, lo_m, hi_m, result);
-  return result;
+  auto track = [&](std::size_t i) { return Track(*varying[i], lo_m, varying[i]->data().slope.data()); };
+  switch (k) {
+    case 0: {
+      const double y_lo = weight == Weight::photons ? lo_m * photons_per_joule_per_metre : 1.0;
+      const double y_hi = weight == Weight::photons ? hi_m * photons_per_joule_per_metre : 1.0;
+      return factor * 0.5 * (hi_m - lo_m) * (y_lo + y_hi);
+    }
+    case 1: return factor * single_integral(*varying[0], varying[0]->data().slope.data(), lo_m, hi_m, weight);
+    case 2: {
+      Track t[2] = {track(0), track(1)};
+      if (!t[0].clamp && !t[1].clamp) return factor * pair_integral(t[0], t[1], lo_m, hi_m, weight);
+      return factor * merged_integral(t, lo_m, hi_m, weight);
+    }
+    case 3: {
+      Track t[3] = {track(0), track(1), track(2)};
+      return factor * merged_integral(t, lo_m, hi_m, weight);
+    }
+    default: {
+      double result = factor;  // rare: four or more varying factors; fold the last ones into a product first
+      Spectrum rest = *varying[3];
+      for (std::size_t i = 4; i < k; ++i) rest = rest.product(*varying[i]);
+      Track t[4] = {track(0), track(1), track(2), Track(rest, lo_m, rest.data().slope.data())};
+      return result * merged_integral(t, lo_m, hi_m, weight);
+    }
+  }
 }
 
 }  // namespace radchain

@@ -268,14 +268,10 @@ int Sweep::run(TableWriter& writer, std::string* failure,
 
 SweepWorker::SweepWorker(const Sweep& sweep)
     : sweep_(sweep), chain_(load_sensor(sweep.options().sensor_file, sweep.options().overrides)) {
-  auto spectral = [&](const std::string& key) {
-    const auto dot = key.rfind('.');
-    return chain_.slot(key.substr(0, dot)).params->entry(key.substr(dot + 1)).spec->spectral;
-  };
-  for (const auto& a : sweep.axes()) axes_.push_back(Axis{chain_.parameter(a.key), spectral(a.key)});
+  for (const auto& a : sweep.axes()) axes_.push_back(chain_.parameter(a.key));
   for (const auto& s : chain_.solves) {
-    double* p = chain_.parameter(s.unknown);
-    unknowns_.emplace_back(p, *p);
+    const ParameterRef p = chain_.parameter(s.unknown);
+    unknowns_.emplace_back(p, p.value());
   }
   for (const auto& name : sweep.results()) {
     const ResultId id = *chain_.results().find(name);
@@ -295,23 +291,12 @@ bool SweepWorker::evaluate(std::size_t point, double* out) {
   for (std::size_t a = 0; a < axes.size(); ++a) {
     const double v_si = axes[a].value_si(index_[a]);
     out[a] = axes[a].value(index_[a]);
-    if (*axes_[a].parameter != v_si) {
-      *axes_[a].parameter = v_si;
-      if (axes_[a].spectral) chain_.invalidate_spectra();
-    }
+    if (axes_[a].value() != v_si) chain_.set(axes_[a], v_si);
   }
   // Every point starts from the file's values of the solved unknowns (the result must not depend on the
-  // points this thread ran before). A spectral unknown dirties the spectral phase only when it moves.
-  for (std::size_t u = 0; u < unknowns_.size(); ++u) {
-    auto& [parameter, initial] = unknowns_[u];
-    if (*parameter != initial) {
-      *parameter = initial;
-      const auto& key = chain_.solves[u].unknown;
-      const auto dot = key.rfind('.');
-      if (chain_.slot(key.substr(0, dot)).params->entry(key.substr(dot + 1)).spec->spectral) chain_.invalidate_spectra();
-    }
-  }
-  chain_.results().clear_values();
+  // points this thread ran before). Only what moves is marked for re-evaluation.
+  for (const auto& [parameter, initial] : unknowns_)
+    if (parameter.value() != initial) chain_.set(parameter, initial);
   bool converged = true;
   if (chain_.solves.empty()) {
     chain_.evaluate();

@@ -1,6 +1,7 @@
 // Detection when SNR ≥ T (Pan 2010 eq. 10). T is given, or follows from the detection and false-alarm
 // probabilities for a known signal in Gaussian noise: T = z(1 - P_fa) + z(P_d), z the standard normal
-// quantile (physics/detection.hpp). The margin SNR - T is what a [[solve]] drives to zero.
+// quantile (physics/detection.hpp). The margin SNR/T − 1 (the criteria's convention: achieved/required − 1) is
+// what a [[solve]] drives to zero.
 // With a false-alarm probability (alone with T, or with P_d) the stage also reports the detection probability
 // at the chain's SNR, Φ(SNR − z(1 − P_fa)); given T and P_fa that is what T buys, e.g. T = 5 at P_fa = 1 %:
 // P_d = Φ(5 − 2.3263) = 0.99625 (docs/physics/detection-threshold.md).
@@ -37,7 +38,7 @@ class SnrThreshold final : public Stage {
   void prepare(Context& c) override {
     snr_ = c.require("detector.snr");
     id_threshold_ = c.declare("threshold", "1", from_probabilities_ ? "T = z(1 - P_fa) + z(P_d), Gaussian" : "input T");
-    id_margin_ = c.declare("margin", "1", "SNR - T (Pan 2010 eq. 10)");
+    id_margin_ = c.declare("margin", "1", "SNR/T − 1 (≥ 0: detected, Pan 2010 eq. 10)");
     id_detected_ = c.declare("detected", "1", "1 if SNR ≥ T (to 1e-9 T)");
     if (false_alarm_) {
       id_false_alarm_ = c.declare("false_alarm_probability", "1", "input P_fa");
@@ -49,11 +50,12 @@ class SnrThreshold final : public Stage {
   void evaluate(Context& c) override {
     const double t = from_probabilities_ ? *from_probabilities_ : *threshold_;
     const double snr = c.results.value(snr_);
-    const double margin = snr - t;
-    c.results.set(id_threshold_, t);
+    const double margin = snr / t - 1.0;
     c.results.set(id_margin_, margin);
-    // At a solved limit the margin is zero to rounding; 1e-9 T keeps that point on the detected side.
-    c.results.set(id_detected_, margin >= -1e-9 * t ? 1.0 : 0.0);
+    if (!c.full_detail()) return;
+    c.results.set(id_threshold_, t);
+    // At a solved limit the margin is zero to rounding; 1e-9 keeps that point on the detected side.
+    c.results.set(id_detected_, margin >= -1e-9 ? 1.0 : 0.0);
     if (false_alarm_) {
       c.results.set(*id_false_alarm_, *false_alarm_);
       c.results.set(*id_detection_probability_, physics::detection_probability_at(snr, *false_alarm_));

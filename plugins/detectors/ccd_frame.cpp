@@ -67,12 +67,9 @@ class CcdFrame final : public Stage {
     const Radiation& signal = c.light.signal;
     if (signal.form != RadiationForm::focal_power) c.refuse_form("a point image's power (a point target)", signal.form);
     const double lo = params_.get("band_min"), hi = params_.get("band_max");
-    auto photons = [](double l) { return physics::photons_per_joule(l); };
     // Spectral phase: photons per second per unit signal scale, QE curve included (Pan eqs. 6-7).
-    if (params_.has("qe_curve"))
-      photon_rate_per_scale_ = band_integral({&signal.spectrum, &params_.spectrum("qe_curve")}, lo, hi, photons);
-    else
-      photon_rate_per_scale_ = band_integral({&signal.spectrum}, lo, hi, photons);
+    photon_rate_per_scale_ = physics::photon_rate(signal.spectrum, lo, hi,
+                                                  params_.has("qe_curve") ? &params_.spectrum("qe_curve") : nullptr);
 
     // The optics' PSF, found by name (telescope: psf = "airy" / "gaussian").
     psf_wavelength_ = c.find("optics.psf_wavelength");

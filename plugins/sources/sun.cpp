@@ -72,11 +72,13 @@ class Sun final : public Stage {
     }
     const Spectrum& v = params_.spectrum("v_lambda");
     const double computed_illuminance = physics::luminous(spectrum, v);
-    if (params_.has("illuminance")) spectrum = spectrum.scaled(params_.get("illuminance") / computed_illuminance);
+    illuminance_ = computed_illuminance;
+    if (params_.has("illuminance")) {
+      spectrum = spectrum.scaled(params_.get("illuminance") / computed_illuminance);
+      illuminance_ = physics::luminous(spectrum, v);  // the pinned value, up to rounding
+    }
     c.light.illumination = spectrum;
-
     total_ = spectrum.integral();
-    illuminance_ = physics::luminous(spectrum, v);
     id_total_ = c.declare("total_irradiance", "W m-2", "∫ E_λ dλ over the spectrum (solar constant at 1 AU)", "W m-2");
     id_illuminance_ = c.declare("illuminance", "lx", "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ, at 1 AU" +
                                 std::string(params_.has("illuminance") ? " (pinned paper value)" : ""), "lx");

@@ -24,7 +24,7 @@ TEST(SweepAxis, RangeWithUnits) {
   EXPECT_EQ(axis.value(15), 30.0);
   // The value `--set optics.aperture="20 cm"` gives, to the bit.
   Chain set = load_sensor(sbv_file, {{"optics.aperture", "20 cm"}});
-  EXPECT_EQ(axis.value_si(5), *set.parameter("optics.aperture"));
+  EXPECT_EQ(axis.value_si(5), set.parameter("optics.aperture").value());
 }
 
 TEST(SweepAxis, MixedUnitsAndPlainNumbers) {

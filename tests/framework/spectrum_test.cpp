@@ -1,5 +1,6 @@
 // Spectrum (framework/include/radchain/spectrum.hpp): linear interpolation, the two extrapolation rules, and
 // the band integrals, checked against values worked by hand and closed-form integrals of linear functions.
+#include "radchain/constants.hpp"
 #include "radchain/spectrum.hpp"
 
 #include <gtest/gtest.h>
@@ -99,9 +100,10 @@ TEST(Spectrum, BandIntegralOfAProductOnDifferentGridsByHand) {
   // Limits inside the grids are inserted as nodes: over [1.5, 2.25] µm, A·B = 1, 2, 1.5 at 1.5, 2, 2.25:
   //   0.25 µm × (1+2) + 0.125 µm × (2+1.5) = 0.75 + 0.4375 = 1.1875 µm.
   EXPECT_NEAR(radchain::band_integral({&a, &b}, 1.5e-6, 2.25e-6), 1.1875e-6, 1e-20);
-  // With a weight w(λ) = λ/µm: nodes 1.5, 2, 2.5, 3 give A·B·w = 1.5, 4, 2.5, 0:
-  //   0.25 µm × [(1.5+4) + (4+2.5) + (2.5+0)] = 0.25 × 14.5 = 3.625 µm.
-  EXPECT_NEAR(radchain::band_integral({&a, &b}, 0.0, 1e-5, [](double l) { return l / 1e-6; }), 3.625e-6, 1e-19);
+  // Photon counting weighs by λ/(hc) = (λ/µm) × 1 µm/(hc): nodes 1.5, 2, 2.5, 3 give A·B·λ/µm = 1.5, 4, 2.5, 0:
+  //   0.25 µm × [(1.5+4) + (4+2.5) + (2.5+0)] = 0.25 × 14.5 = 3.625 µm, times 1 µm/(hc).
+  const double per_um = 1e-6 / (radchain::constants::planck_J_s * radchain::constants::speed_of_light_m_s);
+  EXPECT_NEAR(radchain::band_integral({&a, &b}, 0.0, 1e-5, radchain::Weight::photons) / (3.625e-6 * per_um), 1.0, 1e-14);
   // The product spectrum carries the same nodes, so its own integral is the same number.
   const Spectrum ab = a.product(b);
   EXPECT_EQ(ab.min_wavelength_m(), 1.5e-6);

@@ -35,14 +35,14 @@ class Pan2010Claims : public ::testing::Test {
     chain_ = nullptr;
   }
   static double limit(const std::string& key, double value) {
-    const double saved = *chain_->parameter(key);
+    const double saved = chain_->parameter(key).value();
     chain_->set(key, value);
     const Report r = chain_->run();
     chain_->set(key, saved);
     EXPECT_TRUE(r.solves.at(0).converged) << key << " = " << value << ": " << r.solves.at(0).message;
     return r.solves.at(0).value_si;
   }
-  static double base(const std::string& key) { return *chain_->parameter(key); }
+  static double base(const std::string& key) { return chain_->parameter(key).value(); }
   // dm/d ln x by a central difference (relative step 1e-4; the solves converge to ~1e-14).
   static double elasticity(const std::string& key) {
     const double x = base(key), h = 1e-4;

@@ -58,8 +58,8 @@ double eq12_magnitude(const PanSensor& s, double quantisation_variance, bool pri
   const double e_s = km * band_integral({&e490(), &v_lambda()}, lo_v, hi_v);
   const double k_phi = printed_photometric_limits ? km * band_integral({&e490(), &v_lambda()}, 0.38 * um, 0.76 * um)
                                                   : km * band_integral({&e490(), &v_lambda()}, lo_v, hi_v);
-  const double phi_eta_lambda = s.qe * band_integral({&e490()}, s.band_lo_m, s.band_hi_m, [](double l) { return l; });
   const double hc = constants::planck_J_s * constants::speed_of_light_m_s;
+  const double phi_eta_lambda = s.qe * hc * band_integral({&e490()}, s.band_lo_m, s.band_hi_m, Weight::photons);  // ∫ Φr η λ dλ
   const double two_s = 2.0 * eq11_signal(s, quantisation_variance);  // T² + √(…)
   const double bracket = (k_phi / phi_eta_lambda) * 2.0 * hc * two_s /
                          (std::numbers::pi * e_s * s.aperture_m * s.aperture_m * s.transmittance * s.integration_time_s);

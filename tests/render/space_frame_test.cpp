@@ -57,7 +57,7 @@ TEST(RenderSpaceFrame, DefaultTargetIsTheChainsLimitingMagnitude) {
   EXPECT_NEAR(s.gain_e_per_dn, 1e5 / 4096.0, 1e-12);
   EXPECT_DOUBLE_EQ(s.snr_threshold, 5.0);
   // The chain is put back where it was.
-  EXPECT_NEAR(*sbv.chain.parameter("target.magnitude"), s.limiting_magnitude, 1e-12);
+  EXPECT_NEAR(sbv.chain.parameter("target.magnitude").value(), s.limiting_magnitude, 1e-12);
   const SpaceFrameRenderer r(s);
   EXPECT_NEAR(r.window_fraction(0, 1), 1.0, 1e-15);
   EXPECT_EQ(r.source_pixel(0), std::make_pair(16, 16));

@@ -1,14 +1,20 @@
 #pragma once
 // A sensor file becomes a Chain: one stage per section, evaluated in the order
-//   source -> target -> atmosphere -> optics -> detector -> criteria.*
+//   platform -> source -> atmosphere -> target -> optics -> detector -> criteria.*
 // run() evaluates it forward, then performs the [[solve]] entries (Boost.Math toms748 on the named criterion's
 // margin), then checks the [expected] references.
+//
+// Both phases are incremental. A change of parameter through set() marks its stage: the next evaluate() re-runs
+// the spectral phase (prepare) from the first stage whose spectral parameter changed, and the scalar phase from
+// the first stage whose parameter changed, each from the light as it was before that stage. A sweep over the
+// aperture therefore re-runs optics, detector and criteria, never the Sun's spectral integrals.
 #include "radchain/config.hpp"
 #include "radchain/light.hpp"
 #include "radchain/plugin.hpp"
 #include "radchain/results.hpp"
 #include "radchain/schema.hpp"
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +29,22 @@ struct StageSlot {
   const PluginInfo* info = nullptr;
   std::unique_ptr<Params> params;
   std::unique_ptr<Stage> stage;
+  std::vector<ResultId> declarations;  // what the stage declared at its last spectral phase, in order
+};
+
+// A numeric parameter of one stage, found once by name ("optics.aperture"); Chain::set() through it marks what
+// the next evaluation must re-run.
+class ParameterRef {
+ public:
+  double value() const { return *value_; }
+  std::size_t stage() const { return stage_; }
+  bool spectral() const { return spectral_; }
+
+ private:
+  friend class Chain;
+  double* value_ = nullptr;
+  std::size_t stage_ = 0;
+  bool spectral_ = false;
 };
 
 // [[solve]] unknown = "optics.aperture"  criterion = "energy"  bracket = ["1 cm", "2 m"]
@@ -91,18 +113,24 @@ class Chain {
   std::vector<SolveSpec> solves;
   std::vector<Expectation> expected;
 
-  // The spectral phase, if a spectral parameter changed since it last ran; then the scalar phase.
-  void evaluate();
-  // evaluate() + solves + expectations.
+  // What changed since the last evaluation: the spectral phase from the first stage with a changed spectral
+  // parameter, then the scalar phase from the first stage with any change. Detail::essential (a solver's
+  // iterations) lets stages skip results that only break totals down; a later Detail::full evaluation
+  // recomputes them.
+  void evaluate(Detail detail = Detail::full);
+  // Everything from scratch (both phases, every result) + solves + expectations.
   Report run();
 
-  // The stable address of a scalar parameter, "<section>.<key>" (for solvers and sweeps).
-  double* parameter(const std::string& qualified_key);
+  // A numeric parameter "<section>.<key>". Throws std::out_of_range for an unknown section or a key that is
+  // not numeric, and the schema's std::logic_error for an unknown key.
+  ParameterRef parameter(const std::string& qualified_key);
   StageSlot& slot(const std::string& section);
-  // Sets a scalar parameter (SI) and marks the spectral phase dirty when the parameter affects the spectrum.
-  void set(const std::string& qualified_key, double value_si);
-  // Marks the spectral phase dirty (after a spectral parameter was replaced).
-  void invalidate_spectra() { spectral_dirty_ = true; }
+  // Sets a parameter (SI) and marks its stage for the next evaluation.
+  void set(const ParameterRef& parameter, double value_si);
+  void set(const std::string& qualified_key, double value_si) { set(parameter(qualified_key), value_si); }
+  // Marks both phases of every stage for the next evaluation (after a spectral parameter was replaced; the
+  // cold cost that benchmarks measure).
+  void invalidate_spectra();
   // The results that report each solve's unknown, in the order of `solves` (set by load_sensor).
   void set_solve_result_ids(const std::vector<ResultId>& ids);
 
@@ -111,14 +139,20 @@ class Chain {
   double result(const std::string& name) const;  // throws std::out_of_range when unknown
 
  private:
-  void prepare_all();
-  void evaluate_all();
-  Context context_for(StageSlot& slot);
-  SolveOutcome solve(const SolveSpec& spec);
+  // The light's scalars, saved before each stage's evaluate() so that the scalar phase can restart there.
+  struct Scales {
+    double illumination = 1, signal = 1, background = 1, up_path = 1;
+  };
+  void prepare_from(std::size_t first);
+  void evaluate_from(std::size_t first, Detail detail);
 
   Results results_;
   Light light_;
-  bool spectral_dirty_ = true;
+  std::vector<Light> light_before_;    // per stage: the light its prepare() started from (shared spectra)
+  std::vector<Scales> scales_before_;  // per stage: the scales its evaluate() started from
+  std::size_t spectral_from_ = 0;      // first stage whose prepare() must re-run (stages.size(): none)
+  std::size_t scalar_from_ = 0;        // first stage whose evaluate() must re-run
+  std::size_t essential_from_ = SIZE_MAX;  // first stage last evaluated with Detail::essential
   // Each solve's unknown is echoed as a result: (result, the parameter's stable address), resolved once.
   std::vector<std::pair<ResultId, const double*>> solved_parameters_;
 };

@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace radchain {
 
@@ -21,23 +23,41 @@ std::string to_string(Kind kind);           // "source"
 std::string kind_directory(Kind kind);      // "sources"
 std::optional<Kind> kind_from_directory(const std::string& directory);
 
+// How much a scalar evaluation computes.
+enum class Detail {
+  full,       // every declared result: what a report, a sweep column or a comparison shows
+  essential,  // what later stages and the criteria read (a solver's iterations): a stage may skip results that
+              // only break a total down for the report (noise terms, echoes of inputs)
+};
+
 // What a stage sees while the chain runs.
 class Context {
  public:
+  Context(Results& results, Light& light, const std::string& section, const std::string& plugin,
+          Detail detail = Detail::full, std::vector<ResultId>* declarations = nullptr)
+      : results(results), light(light), section(section), plugin(plugin), detail(detail), declarations_(declarations) {}
+
   Results& results;
   Light& light;
   const std::string& section;  // the stage being run: "optics", "criteria.detection"
   const std::string& plugin;   // (references: a Context is built per stage call and must cost nothing)
+  const Detail detail;
+  bool full_detail() const { return detail == Detail::full; }
 
-  // Declares "<section>.<name>".
-  ResultId declare(const std::string& name, const std::string& si_unit, const std::string& equation,
-                   const std::string& display_unit = {});
+  // Declares "<section>.<name>". A stage declares the same results in the same order at every spectral phase;
+  // then this is a comparison of names, not a look-up.
+  ResultId declare(std::string_view name, std::string_view si_unit, std::string_view equation,
+                   std::string_view display_unit = {});
   // A result another stage must have declared; a missing one is a chain that does not fit together
   // (InputError naming both).
-  ResultId require(const std::string& qualified_name) const;
-  std::optional<ResultId> find(const std::string& qualified_name) const { return results.find(qualified_name); }
+  ResultId require(std::string_view qualified_name) const;
+  std::optional<ResultId> find(std::string_view qualified_name) const { return results.find(qualified_name); }
   // The incoming radiation has a form this stage cannot take.
   [[noreturn]] void refuse_form(const std::string& what, RadiationForm form) const;
+
+ private:
+  std::vector<ResultId>* declarations_;  // this stage's declarations at its last spectral phase, in order
+  std::size_t next_declaration_ = 0;
 };
 
 class Stage {
@@ -46,7 +66,9 @@ class Stage {
   // Spectral phase: runs when the chain is built and whenever a parameter marked affects_spectrum changes.
   // Declare results here and do every spectral integral here.
   virtual void prepare(Context& context);
-  // Scalar phase: runs at every evaluation. Read scalar parameters through Params::handle() pointers.
+  // Scalar phase: runs at every evaluation that one of the stage's parameters, or an earlier stage, changed.
+  // Read scalar parameters through Params::handle() pointers. Under Detail::essential, results no later stage
+  // reads may be left unset (they keep their last values).
   virtual void evaluate(Context& context) = 0;
 };
 

@@ -3,8 +3,11 @@
 // the equation it came from. Declared once per spectral configuration, then written by index, so that a
 // solve or a sweep costs array stores, not string lookups.
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace radchain {
@@ -28,15 +31,20 @@ class Results {
                    const std::string& equation, const std::string& display_unit = {});
   void set(ResultId id, double value_si) { values_[id] = value_si; }
   double value(ResultId id) const { return values_[id]; }
-  std::optional<ResultId> find(const std::string& name) const;
+  std::optional<ResultId> find(std::string_view name) const;
   const ResultInfo& info(ResultId id) const { return infos_[id]; }
   std::size_t size() const { return infos_.size(); }
   bool is_set(ResultId id) const;  // false while NaN (not evaluated)
   void clear_values();             // all NaN
 
  private:
+  struct Hash {
+    using is_transparent = void;
+    std::size_t operator()(std::string_view s) const { return std::hash<std::string_view>{}(s); }
+  };
   std::vector<ResultInfo> infos_;
   std::vector<double> values_;
+  std::unordered_map<std::string, ResultId, Hash, std::equal_to<>> index_;  // name → id
 };
 
 }  // namespace radchain

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace radchain {
@@ -83,17 +84,17 @@ class Params {
   const std::string& plugin() const { return plugin_; }
   std::string context() const;  // `optics (plugin "telescope")`
 
-  bool has(const std::string& key) const;    // given or defaulted
-  bool given(const std::string& key) const;  // written in the file
-  double get(const std::string& key) const;  // quantity / number / integer (SI)
-  std::optional<double> maybe(const std::string& key) const;
-  const double* handle(const std::string& key) const;
-  std::int64_t integer(const std::string& key) const;
-  const std::string& text(const std::string& key) const;
-  bool flag(const std::string& key) const;
-  const Spectrum& spectrum(const std::string& key) const;
-  const Entry& entry(const std::string& key) const;
-  Entry& entry(const std::string& key);
+  bool has(std::string_view key) const;    // given or defaulted
+  bool given(std::string_view key) const;  // written in the file
+  double get(std::string_view key) const;  // quantity / number / integer (SI)
+  std::optional<double> maybe(std::string_view key) const;
+  const double* handle(std::string_view key) const;
+  std::int64_t integer(std::string_view key) const;
+  const std::string& text(std::string_view key) const;
+  bool flag(std::string_view key) const;
+  const Spectrum& spectrum(std::string_view key) const;
+  const Entry& entry(std::string_view key) const;
+  Entry& entry(std::string_view key);
   const Schema& schema() const { return *schema_; }
 
   // A plugin's own consistency rule failed for `key` (e.g. element size larger than pitch).

@@ -5,8 +5,9 @@
 // written in (so "15 cm:30 cm:16" gives exactly the values `--set optics.aperture="20 cm"` gives) and converted
 // to SI once.
 //
-// Every worker thread owns a Chain loaded once from the file; a point changes scalar parameters through their
-// stable addresses (Chain::parameter) and re-runs only the scalar phase, unless the parameter is spectral.
+// Every worker thread owns a Chain loaded once from the file; a point changes parameters through Chain::set()
+// and re-runs what they affect: the scalar phase from the changed stage on, the spectral phase only for a
+// spectral parameter.
 // Before each point the solved unknowns go back to their values in the file, so a point's result does not
 // depend on which points the thread ran before it: the output is the same for any thread count or shard.
 #include "radchain/chain.hpp"
@@ -95,10 +96,6 @@ class SweepWorker {
   Chain& chain() { return chain_; }
 
  private:
-  struct Axis {
-    double* parameter;
-    bool spectral;
-  };
   struct Column {
     ResultId id;
     double factor;
@@ -106,8 +103,8 @@ class SweepWorker {
   };
   const Sweep& sweep_;
   Chain chain_;
-  std::vector<Axis> axes_;
-  std::vector<std::pair<double*, double>> unknowns_;  // solved parameters and their values in the file
+  std::vector<ParameterRef> axes_;
+  std::vector<std::pair<ParameterRef, double>> unknowns_;  // solved parameters and their values in the file
   std::vector<Column> columns_;
   std::vector<SolveOutcome> outcomes_;
   std::vector<std::size_t> index_;

@@ -3,7 +3,6 @@
 #include "radchain/physics/planck.hpp"
 
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 
 namespace radchain::physics {
@@ -28,9 +27,8 @@ double blackbody_band_fraction(double lo_m, double hi_m, double temperature_K, d
 
 double utilisation_coefficient(const Spectrum& source, const Spectrum& relative_response,
                                WavelengthRange response_range, WavelengthRange source_range, Counting counting) {
-  // Photon counting weights both integrands by λ/(hc); the constant hc cancels, λ is enough.
-  std::function<double(double)> weight;
-  if (counting == Counting::photons) weight = [](double l) { return l; };
+  // Photon counting weights both integrands by λ/(hc) (the constant cancels in the ratio).
+  const Weight weight = counting == Counting::photons ? Weight::photons : Weight::energy;
   const double used = band_integral({&source, &relative_response}, response_range.lo_m, response_range.hi_m, weight);
   const double available = band_integral({&source}, source_range.lo_m, source_range.hi_m, weight);
   if (!(available > 0)) throw std::invalid_argument("utilisation_coefficient: no source radiation in the source range");

@@ -33,9 +33,8 @@ Spectrum radiometric_from_luminous(double luminous_value, const Spectrum& relati
 
 double photon_rate(const Spectrum& spectral_radiometric, double lo_m, double hi_m, const Spectrum* quantum_efficiency) {
   // Pan 2010 eq. (6): n(λ) = Φ_λ λ/(hc); eq. (7): n_e = ∫ n(λ) η_λ dλ.
-  auto photons = [](double l) { return photons_per_joule(l); };
-  if (quantum_efficiency) return band_integral({&spectral_radiometric, quantum_efficiency}, lo_m, hi_m, photons);
-  return band_integral({&spectral_radiometric}, lo_m, hi_m, photons);
+  if (quantum_efficiency) return band_integral({&spectral_radiometric, quantum_efficiency}, lo_m, hi_m, Weight::photons);
+  return band_integral({&spectral_radiometric}, lo_m, hi_m, Weight::photons);
 }
 
 double photons_per_lumen(const Spectrum& relative_distribution, const Spectrum& v_lambda, double lo_m, double hi_m,

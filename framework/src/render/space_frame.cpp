@@ -32,7 +32,7 @@ class MagnitudeProbe {
  public:
   explicit MagnitudeProbe(Chain& chain) : chain_(chain) {
     try {
-      saved_ = *chain.parameter("target.magnitude");
+      saved_ = chain.parameter("target.magnitude").value();
     } catch (const std::out_of_range&) {
       refuse(chain.sensor_file, "target.magnitude",
              "a frame needs a point target with a magnitude (plugin point_magnitude); this sensor's target has none");
@@ -61,7 +61,7 @@ class MagnitudeProbe {
 double limiting_magnitude(Chain& chain, const Report& report) {
   for (const auto& s : report.solves)
     if (s.spec.unknown == "target.magnitude" && s.converged) return s.value_si;
-  return *chain.parameter("target.magnitude");
+  return chain.parameter("target.magnitude").value();
 }
 
 double threshold_of(const Report& report) {
