@@ -30,7 +30,7 @@ void BM_SbvLimitingMagnitudeWithSpectralPhase(benchmark::State& state) {
   for (auto _ : state) {
     chain.set(magnitude, start);
     chain.invalidate_spectra();
-    solve_all(chain, outcomes);
+    chain.solve_all(outcomes);
     keep(outcomes.front().value_si);
   }
   check_magnitude(state, outcomes.front().value_si);
@@ -72,7 +72,7 @@ void BM_SbvLimitingMagnitudeSolve(benchmark::State& state) {
   std::vector<SolveOutcome> outcomes;
   for (auto _ : state) {
     chain.set(magnitude, start);
-    solve_all(chain, outcomes);
+    chain.solve_all(outcomes);
     keep(outcomes.front().value_si);
   }
   check_magnitude(state, outcomes.front().value_si);

@@ -1,7 +1,6 @@
 #include "radchain/chain.hpp"
 
 #include "radchain/error.hpp"
-#include "radchain/sweep.hpp"  // solve_all
 #include "radchain/units.hpp"
 
 #include <boost/math/tools/roots.hpp>
@@ -58,16 +57,11 @@ void Chain::evaluate_from(std::size_t first, Detail detail) {
     Context context(results_, light_, slot.section, slot.plugin, detail);
     slot.stage->evaluate(context);
   }
-  for (const auto& [id, value] : solved_parameters_) results_.set(id, *value);
+  for (const ResolvedSolve& r : resolved_)
+    if (r.echo != SIZE_MAX) results_.set(r.echo, r.unknown.value());
   scalar_from_ = stages.size();
   if (detail == Detail::essential) essential_from_ = std::min(essential_from_, first);
   else if (first <= essential_from_) essential_from_ = SIZE_MAX;
-}
-
-void Chain::set_solve_result_ids(const std::vector<ResultId>& ids) {
-  solved_parameters_.clear();
-  for (std::size_t i = 0; i < ids.size() && i < solves.size(); ++i)
-    solved_parameters_.emplace_back(ids[i], parameter(solves[i].unknown).value_);
 }
 
 void Chain::evaluate(Detail detail) {
@@ -144,96 +138,112 @@ double Chain::result(const std::string& name) const {
 // the same; a ratio ≤ 0 maps below ln of the smallest double, keeping the order.
 static double solver_margin(double margin) { return margin > -1 ? std::log1p(margin) : -1e3; }
 
-// One [[solve]] entry through Chain's public interface (solve_all() serves run() and sweeps).
-static SolveOutcome solve_one(Chain& chain, const SolveSpec& spec) {
-  SolveOutcome outcome{spec, std::numeric_limits<double>::quiet_NaN(), 0, false, {}, {}, {}};
-  const ParameterRef unknown = chain.parameter(spec.unknown);
-  std::vector<ResultId> margins;
-  for (const auto& name : spec.criteria) margins.push_back(*chain.results().find("criteria." + name + ".margin"));
+void Chain::resolve_solves(const std::vector<ResultId>& echo_ids) {
+  resolved_.clear();
+  for (std::size_t i = 0; i < solves.size(); ++i) {
+    ResolvedSolve r{parameter(solves[i].unknown), {}, i < echo_ids.size() ? echo_ids[i] : SIZE_MAX};
+    for (const auto& name : solves[i].criteria) r.margins.push_back(*results_.find("criteria." + name + ".margin"));
+    resolved_.push_back(std::move(r));
+  }
+}
+
+void Chain::solve(std::size_t index, SolveOutcome& outcome) {
+  const SolveSpec& spec = solves[index];
+  const ResolvedSolve& resolved = resolved_[index];
+  const std::vector<ResultId>& margins = resolved.margins;
+  // The outcome is reused between sweep points: its copy of the spec only when it is another solve's.
+  if (outcome.spec.unknown != spec.unknown || outcome.spec.criteria != spec.criteria) outcome.spec = spec;
+  outcome.value_si = std::numeric_limits<double>::quiet_NaN();
+  outcome.iterations = 0;
+  outcome.converged = false;
+  outcome.message.clear();
+  outcome.binding.clear();
+  outcome.roots.clear();
   auto set_unknown = [&](double x, Detail detail) {
-    chain.set(unknown, x);
-    chain.evaluate(detail);
+    set(resolved.unknown, x);
+    evaluate(detail);
   };
 
   // Each criterion's own root (Boost.Math TOMS 748: Alefeld, Potra, Shi 1995; bracketing, superlinear).
-  std::vector<double> roots;
   for (std::size_t k = 0; k < margins.size(); ++k) {
     auto f = [&](double x) {
       set_unknown(x, Detail::essential);
-      return solver_margin(chain.results().value(margins[k]));
+      return solver_margin(results_.value(margins[k]));
     };
     const double f_lo = f(spec.lo), f_hi = f(spec.hi);
     if (std::isnan(f_lo) || std::isnan(f_hi)) {
       outcome.message = fmt::format("criterion \"{}\": the margin is not a number at the bracket ends", spec.criteria[k]);
-      return outcome;
+      return;
     }
     double root = f_lo == 0 ? spec.lo : spec.hi;
     if (f_lo != 0 && f_hi != 0) {
       if ((f_lo > 0) == (f_hi > 0)) {
         set_unknown(spec.lo, Detail::essential);
-        const double margin_lo = chain.results().value(margins[k]);
+        const double margin_lo = results_.value(margins[k]);
         set_unknown(spec.hi, Detail::essential);
-        const double margin_hi = chain.results().value(margins[k]);
+        const double margin_hi = results_.value(margins[k]);
         outcome.message = fmt::format("criterion \"{}\" has the same sign at both ends of the bracket (margin {:.4g} and "
                                       "{:.4g}): no solution in [{:g}, {:g}]",
                                       spec.criteria[k], margin_lo, margin_hi, spec.lo, spec.hi);
-        return outcome;
+        return;
       }
       std::uintmax_t iterations = 200;
       const auto [a, b] = boost::math::tools::toms748_solve(f, spec.lo, spec.hi, f_lo, f_hi,
                                                             boost::math::tools::eps_tolerance<double>(48), iterations);
       if (iterations >= 200) {
         outcome.message = fmt::format("criterion \"{}\": no convergence in 200 iterations", spec.criteria[k]);
-        return outcome;
+        return;
       }
       outcome.iterations += static_cast<int>(iterations);
       root = 0.5 * (a + b);
     }
-    roots.push_back(root);
     outcome.roots.emplace_back(spec.criteria[k], root);
   }
 
   // Keep the root at which every listed margin holds (≥ 0 up to the solver's tolerance): that criterion binds.
-  std::size_t chosen = roots.size();
+  std::size_t chosen = margins.size();
   double best_slack = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < roots.size(); ++k) {
-    if (margins.size() > 1) set_unknown(roots[k], Detail::essential);  // (one criterion: no other margin to check)
+  for (std::size_t k = 0; k < margins.size(); ++k) {
+    if (margins.size() > 1) set_unknown(outcome.roots[k].second, Detail::essential);  // (one criterion: nothing to check)
     double worst = std::numeric_limits<double>::infinity();
     for (std::size_t m = 0; m < margins.size(); ++m)
-      if (m != k) worst = std::min(worst, chain.results().value(margins[m]));
+      if (m != k) worst = std::min(worst, results_.value(margins[m]));
     if (!(worst >= -1e-9)) continue;
-    if (chosen == roots.size() || worst < best_slack) chosen = k, best_slack = worst;
+    if (chosen == margins.size() || worst < best_slack) chosen = k, best_slack = worst;
   }
-  if (chosen == roots.size()) {
+  if (chosen == margins.size()) {
     outcome.message = "no value satisfies all the listed criteria at once";
-    return outcome;
+    return;
   }
-  outcome.value_si = roots[chosen];
+  outcome.value_si = outcome.roots[chosen].second;
   outcome.binding = spec.criteria[chosen];
   outcome.converged = true;
   set_unknown(outcome.value_si, Detail::full);
-  return outcome;
 }
 
-
-void solve_all(Chain& chain, std::vector<SolveOutcome>& outcomes) {
+void Chain::solve_all(std::vector<SolveOutcome>& outcomes) {
+  outcomes.resize(solves.size());
+  if (solves.empty()) {
+    evaluate();  // every solve ends with a full evaluation at the parameters it leaves; without solves, this one
+    return;
+  }
+  if (solves.size() == 1) {
+    solve(0, outcomes[0]);
+    return;
+  }
   // Several solves form a design: repeat them in order until no unknown moves (they are usually decoupled,
   // and then one pass suffices).
-  outcomes.clear();
-  std::vector<double> previous(chain.solves.size(), std::numeric_limits<double>::quiet_NaN());
-  for (int pass = 0; pass < 30 && !chain.solves.empty(); ++pass) {
-    outcomes.clear();
+  std::vector<double> previous(solves.size(), std::numeric_limits<double>::quiet_NaN());
+  for (int pass = 0; pass < 30; ++pass) {
     bool moved = false;
-    for (std::size_t i = 0; i < chain.solves.size(); ++i) {
-      outcomes.push_back(solve_one(chain, chain.solves[i]));
-      const double v = outcomes.back().value_si;
+    for (std::size_t i = 0; i < solves.size(); ++i) {
+      solve(i, outcomes[i]);
+      const double v = outcomes[i].value_si;
       if (!(std::abs(v - previous[i]) <= 1e-12 * std::abs(v))) moved = true;
       previous[i] = v;
     }
-    if (!moved || chain.solves.size() == 1) break;
+    if (!moved) break;
   }
-  // Every solve ends with an evaluation at the parameters it leaves, so only a chain without solves needs one.
-  if (chain.solves.empty()) chain.evaluate();
 }
 
 Report Chain::run() {
@@ -243,7 +253,7 @@ Report Chain::run() {
   Report report;
   report.sensor_file = sensor_file;
   report.sensor_name = sensor_name;
-  solve_all(*this, report.solves);
+  solve_all(report.solves);
   report.results.reserve(results_.size());
   for (std::size_t i = 0; i < results_.size(); ++i) {
     report.results.push_back(results_.info(i));

@@ -297,8 +297,7 @@ Chain load_sensor(const std::string& path, const std::vector<Override>& override
       ids.push_back(chain.results().declare(unknown, pspec.si_unit, chain.slot(unknown.substr(0, dot)).info->name,
                                             "[[solve]] root of criteria margin", display));
     }
-    // Stored through a public path: re-run so the chain writes solved values into these results.
-    chain.set_solve_result_ids(ids);
+    chain.resolve_solves(ids);
   }
 
   if (const ConfigValue* expected = root.find("expected")) {

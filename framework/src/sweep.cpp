@@ -301,7 +301,7 @@ bool SweepWorker::evaluate(std::size_t point, double* out) {
   if (chain_.solves.empty()) {
     chain_.evaluate();
   } else {
-    solve_all(chain_, outcomes_);
+    chain_.solve_all(outcomes_);
     for (const auto& o : outcomes_) {
       if (o.converged) continue;
       if (converged) {

@@ -125,7 +125,7 @@ class CcdFrame final : public Stage {
     const double ensquared = ensquared_energy(c, n);
     const double signal = ensquared * image;
     const double dark = pixels * *dark_ * t;
-    const double levels = std::exp2(*bits_);
+    const double levels = std::ldexp(1.0, static_cast<int>(*bits_));  // 2^N
     const double quant_var = pixels * (paper_quantisation_ ? *well_ / (levels * std::sqrt(12.0))
                                                            : (*well_ / levels) * (*well_ / levels) / 12.0);
     const double read_var = pixels * *read_ * *read_;
@@ -147,6 +147,10 @@ class CcdFrame final : public Stage {
     const double background = pixels * sky_per_pixel;
     const double noise = std::sqrt(dark + read_var + quant_var + background + signal);
     c.results.set(id_signal_, signal);
+    c.results.set(id_noise_, noise);
+    c.results.set(id_snr_, signal / noise);
+    c.results.set(id_time_, t);
+    if (!c.full_detail()) return;  // the noise budget's terms: for the report
     c.results.set(id_image_, image);
     c.results.set(id_ensquared_, ensquared);
     c.results.set(id_pixels_, pixels);
@@ -157,9 +161,6 @@ class CcdFrame final : public Stage {
     c.results.set(id_background_, background);
     c.results.set(id_background_noise_, std::sqrt(background));
     c.results.set(id_shot_noise_, std::sqrt(signal));
-    c.results.set(id_noise_, noise);
-    c.results.set(id_snr_, signal / noise);
-    c.results.set(id_time_, t);
   }
 
  private:

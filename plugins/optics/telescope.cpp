@@ -117,7 +117,7 @@ class Telescope final : public Stage {
       c.results.set(id_airy_radius_, first_dark_ring_v_ * *psf_wavelength_ * (*focal_length_ / d) / std::numbers::pi);
     }
     if (gaussian_) c.results.set(id_gaussian_fwhm_, *gaussian_fwhm_);
-    if (target_lux_) c.results.set(id_flux_, std::numbers::pi * d * d / 4.0 * c.results.value(*target_lux_));
+    if (target_lux_ && c.full_detail()) c.results.set(id_flux_, std::numbers::pi * d * d / 4.0 * c.results.value(*target_lux_));
   }
 
  private:

@@ -41,9 +41,10 @@ class PointMagnitude final : public Stage {
     const double ratio = physics::magnitude_ratio(*magnitude_, c.results.value(sun_magnitude_));
     c.light.signal.scale = ratio * c.light.up_path_scale;
     c.results.set(id_ratio_, ratio);
+    if (!c.full_detail()) return;  // target.illuminance feeds only the telescope's reported luminous flux
     // source.illuminance is at the source's distance: back to 1 AU.
-    const double to_1au = sun_distance_ ? std::pow(c.results.value(*sun_distance_) / constants::astronomical_unit_m, 2) : 1.0;
-    c.results.set(id_illuminance_, ratio * c.results.value(sun_illuminance_) * to_1au);
+    const double au = sun_distance_ ? c.results.value(*sun_distance_) / constants::astronomical_unit_m : 1.0;
+    c.results.set(id_illuminance_, ratio * c.results.value(sun_illuminance_) * au * au);
   }
 
  private:

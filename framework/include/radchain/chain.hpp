@@ -131,8 +131,12 @@ class Chain {
   // Marks both phases of every stage for the next evaluation (after a spectral parameter was replaced; the
   // cold cost that benchmarks measure).
   void invalidate_spectra();
-  // The results that report each solve's unknown, in the order of `solves` (set by load_sensor).
-  void set_solve_result_ids(const std::vector<ResultId>& ids);
+  // The [[solve]] entries exactly as run() performs them (passes until no unknown moves; each solve ends with a
+  // full evaluation at its root), without a Report: what a sweep point costs. `outcomes` is reused.
+  void solve_all(std::vector<SolveOutcome>& outcomes);
+  // Resolves each solve's unknown and margins once, and the results that echo the solved values, in the order
+  // of `solves` (load_sensor).
+  void resolve_solves(const std::vector<ResultId>& echo_ids);
 
   Results& results() { return results_; }
   const Results& results() const { return results_; }
@@ -153,8 +157,14 @@ class Chain {
   std::size_t spectral_from_ = 0;      // first stage whose prepare() must re-run (stages.size(): none)
   std::size_t scalar_from_ = 0;        // first stage whose evaluate() must re-run
   std::size_t essential_from_ = SIZE_MAX;  // first stage last evaluated with Detail::essential
-  // Each solve's unknown is echoed as a result: (result, the parameter's stable address), resolved once.
-  std::vector<std::pair<ResultId, const double*>> solved_parameters_;
+  // Each [[solve]] resolved once: its unknown, its criteria's margins, the result that echoes the solved value.
+  struct ResolvedSolve {
+    ParameterRef unknown;
+    std::vector<ResultId> margins;
+    ResultId echo = SIZE_MAX;
+  };
+  void solve(std::size_t index, SolveOutcome& outcome);
+  std::vector<ResolvedSolve> resolved_;
 };
 
 // One `--set key=value` override: "optics.aperture=20 cm", "target.magnitude=15".

@@ -21,11 +21,6 @@
 
 namespace radchain {
 
-// Performs the chain's [[solve]] entries exactly as Chain::run() does (passes until no unknown moves), then
-// evaluates once more; no Report is built, so a sweep point costs the solver's evaluations only. Defined in
-// chain.cpp, which uses it for run() as well.
-void solve_all(Chain& chain, std::vector<SolveOutcome>& outcomes);
-
 struct SweepAxis {
   std::string key;            // "optics.aperture"
   std::string range;          // as written: "15 cm:30 cm:16"
