@@ -40,6 +40,31 @@ void BM_MillionForwardEvaluations_OneCore(benchmark::State& state) {
 }
 BENCHMARK(BM_MillionForwardEvaluations_OneCore)->Unit(benchmark::kMillisecond)->Iterations(2);
 
+// The same in lanes (radchain/lanes.hpp): eight apertures per pass. Detail::full computes every result (each
+// noise term's square root); Detail::essential what the SNR and the criteria need.
+void million_lane_evaluations(benchmark::State& state, Detail detail) {
+  Chain chain = load_sensor(sbv);
+  const ParameterRef aperture = chain.parameter("optics.aperture");
+  const ResultId snr = *chain.results().find("detector.snr");
+  std::vector<double> apertures(million);
+  for (std::size_t i = 0; i < million; ++i) apertures[i] = aperture_at(i);
+  for (auto _ : state) {
+    double sum = 0;
+    for (std::size_t i = 0; i < million; i += lane_count) {
+      chain.set_lanes(aperture, Eigen::Map<const Lanes>(apertures.data() + i));
+      chain.evaluate_lanes(detail);
+      sum += chain.lane_result(snr).sum();
+    }
+    keep(sum);
+  }
+}
+void BM_MillionForwardEvaluations_Lanes_OneCore(benchmark::State& state) { million_lane_evaluations(state, Detail::full); }
+BENCHMARK(BM_MillionForwardEvaluations_Lanes_OneCore)->Unit(benchmark::kMillisecond)->Iterations(5);
+void BM_MillionForwardEvaluations_LanesEssential_OneCore(benchmark::State& state) {
+  million_lane_evaluations(state, Detail::essential);
+}
+BENCHMARK(BM_MillionForwardEvaluations_LanesEssential_OneCore)->Unit(benchmark::kMillisecond)->Iterations(5);
+
 // Forward evaluations on all cores: one Chain per worker thread.
 void BM_MillionForwardEvaluations_AllCores(benchmark::State& state) {
   std::vector<std::unique_ptr<Chain>> chains(worker_slots());
@@ -81,6 +106,23 @@ void BM_MillionSolves_OneCore(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_MillionSolves_OneCore)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// The same in lanes: eight points per group, solved in lockstep (what `radchain sweep` does).
+void BM_MillionSolves_Lanes_OneCore(benchmark::State& state) {
+  const Sweep sweep(million_apertures());
+  SweepWorker worker(sweep);
+  std::vector<double> out(2 * lane_count);
+  std::vector<char> ok(lane_count);
+  std::size_t group[lane_count];
+  for (auto _ : state) {
+    for (std::size_t point = 0; point < million; point += lane_count) {
+      for (std::size_t k = 0; k < lane_count; ++k) group[k] = point + k;
+      worker.evaluate_group(group, lane_count, out.data(), ok.data());
+    }
+    keep(out[1]);
+  }
+}
+BENCHMARK(BM_MillionSolves_Lanes_OneCore)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 // Solves on all cores: one SweepWorker (one Chain) per worker thread.
 void BM_MillionSolves_AllCores(benchmark::State& state) {

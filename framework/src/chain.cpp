@@ -60,8 +60,74 @@ void Chain::evaluate_from(std::size_t first, Detail detail) {
   for (const ResolvedSolve& r : resolved_)
     if (r.echo != SIZE_MAX) results_.set(r.echo, r.unknown.value());
   scalar_from_ = stages.size();
+  ++scalar_version_;
   if (detail == Detail::essential) essential_from_ = std::min(essential_from_, first);
   else if (first <= essential_from_) essential_from_ = SIZE_MAX;
+}
+
+void Chain::set_lanes(const ParameterRef& parameter, const Lanes& values) {
+  if (parameter.spectral_)
+    throw std::logic_error("a spectral parameter cannot differ between lanes (the spectral phase is shared)");
+  for (std::size_t i = 0; i < lane_slots_.size(); ++i)
+    if (lane_slots_[i].address == parameter.value_) {
+      lane_parameters_[i].values = values;
+      return;
+    }
+  lane_parameters_.push_back(LaneParameter{parameter.value_, values});
+  lane_slots_.push_back(LaneSlot{parameter.value_, parameter.stage_});
+}
+
+void Chain::evaluate_lanes(Detail detail) {
+  evaluate(Detail::full);  // the scalar phase up to date: the lanes start from its results
+  std::size_t first = stages.size();
+  for (const LaneSlot& s : lane_slots_) first = std::min(first, s.stage);
+  if (lane_base_version_ != scalar_version_ || lane_results_.size() != results_.size()) {
+    lane_results_.resize(results_.size());
+    for (std::size_t id = 0; id < results_.size(); ++id) lane_results_[id] = constant_lanes(results_.value(id));
+    lane_base_version_ = scalar_version_;
+  }
+  if (first < stages.size()) {
+    const Scales& start = scales_before_[first];
+    lane_scales_ = LaneScales{constant_lanes(start.illumination), constant_lanes(start.signal),
+                              constant_lanes(start.background), constant_lanes(start.up_path)};
+  }
+  for (std::size_t k = first; k < stages.size(); ++k) {
+    LaneContext context(lane_results_, light_, lane_scales_, lane_parameters_, detail == Detail::full);
+    if (!stages[k].stage->evaluate_lanes(context)) evaluate_lane_by_lane(stages[k], detail);
+  }
+  for (const ResolvedSolve& r : resolved_)
+    if (r.echo != SIZE_MAX) {
+      lane_results_[r.echo] = constant_lanes(r.unknown.value());
+      for (const LaneParameter& p : lane_parameters_)
+        if (p.address == r.unknown.value_) lane_results_[r.echo] = p.values;
+    }
+}
+
+// The scalar evaluate() once per lane, with that lane's parameters, upstream results and scales in the scalar
+// slots; everything scalar is put back afterwards, so the scalar phase stays valid.
+void Chain::evaluate_lane_by_lane(StageSlot& slot, Detail detail) {
+  saved_values_ = results_.values();
+  const Light saved_light = light_;
+  std::vector<double> saved_parameters;
+  for (const LaneSlot& s : lane_slots_) saved_parameters.push_back(*s.address);
+  for (int lane = 0; lane < lane_count; ++lane) {
+    for (std::size_t i = 0; i < lane_slots_.size(); ++i) *lane_slots_[i].address = lane_parameters_[i].values(lane);
+    for (std::size_t id = 0; id < results_.size(); ++id) results_.set(id, lane_results_[id](lane));
+    light_.illumination_scale = lane_scales_.illumination(lane);
+    light_.signal.scale = lane_scales_.signal(lane);
+    light_.background.scale = lane_scales_.background(lane);
+    light_.up_path_scale = lane_scales_.up_path(lane);
+    Context context(results_, light_, slot.section, slot.plugin, detail);
+    slot.stage->evaluate(context);
+    for (ResultId id : slot.declarations) lane_results_[id](lane) = results_.value(id);
+    lane_scales_.illumination(lane) = light_.illumination_scale;
+    lane_scales_.signal(lane) = light_.signal.scale;
+    lane_scales_.background(lane) = light_.background.scale;
+    lane_scales_.up_path(lane) = light_.up_path_scale;
+  }
+  for (std::size_t i = 0; i < lane_slots_.size(); ++i) *lane_slots_[i].address = saved_parameters[i];
+  results_.restore(saved_values_);
+  light_ = saved_light;
 }
 
 void Chain::evaluate(Detail detail) {
@@ -219,6 +285,124 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
   outcome.binding = spec.criteria[chosen];
   outcome.converged = true;
   set_unknown(outcome.value_si, Detail::full);
+}
+
+bool Chain::lanes_can_solve() const { return solves.size() == 1 && !resolved_.empty() && !resolved_[0].unknown.spectral(); }
+
+void Chain::solve_lanes(LaneSolveOutcome& outcome) {
+  if (!lanes_can_solve()) throw std::logic_error("solve_lanes: the chain needs exactly one [[solve]] on a non-spectral unknown");
+  const SolveSpec& spec = solves[0];
+  const ResolvedSolve& resolved = resolved_[0];
+  const std::size_t n_criteria = resolved.margins.size();
+  const double tolerance = std::ldexp(1.0, 1 - 48);  // boost::math::tools::eps_tolerance<double>(48), as solve()
+  outcome.passes = 0;
+  outcome.converged.fill(true);
+  for (auto& m : outcome.message) m.clear();
+  auto margins_at = [&](const Lanes& x) {
+    set_lanes(resolved.unknown, x);
+    evaluate_lanes(Detail::essential);
+    ++outcome.passes;
+  };
+  auto solver_margins = [&](ResultId id) {
+    const Lanes& m = lane_result(id);
+    // solver_margin() per lane, as log(1 + m): Eigen's log has a SIMD form, its log1p does not. Near the root,
+    // where 1 + m rounds, the value loses digits but never its sign.
+    return Lanes((m > -1.0).select((m + 1.0).log(), -1e3));
+  };
+  auto fail = [&](int lane, std::string message) {
+    if (outcome.converged[lane]) outcome.converged[lane] = false, outcome.message[lane] = std::move(message);
+  };
+
+  std::vector<Lanes> roots(n_criteria);
+  for (std::size_t k = 0; k < n_criteria; ++k) {
+    const ResultId id = resolved.margins[k];
+    // Dekker's method per lane (Dekker 1969; Brent 1973 ch. 4): b the best end, a the contrapoint, c the previous
+    // b. A secant step through b and c when it falls between b and the midpoint, else bisection; never a step
+    // below the tolerance, so the bracket closes from both sides.
+    Lanes a = constant_lanes(spec.lo), b = constant_lanes(spec.hi);
+    margins_at(a);
+    Lanes f_a = solver_margins(id);
+    const Lanes margin_lo = lane_result(id);
+    margins_at(b);
+    Lanes f_b = solver_margins(id);
+    Lanes c = a, f_c = f_a;
+    Lanes& root = roots[k];
+    std::array<bool, lane_count> active{};
+    for (int i = 0; i < lane_count; ++i) {
+      root(i) = spec.lo;
+      if (std::isnan(f_a(i)) || std::isnan(f_b(i))) {
+        fail(i, fmt::format("criterion \"{}\": the margin is not a number at the bracket ends", spec.criteria[k]));
+      } else if (f_a(i) == 0 || f_b(i) == 0) {
+        root(i) = f_a(i) == 0 ? spec.lo : spec.hi;
+      } else if ((f_a(i) > 0) == (f_b(i) > 0)) {
+        fail(i, fmt::format("criterion \"{}\" has the same sign at both ends of the bracket (margin {:.4g} and {:.4g}): "
+                            "no solution in [{:g}, {:g}]",
+                            spec.criteria[k], margin_lo(i), lane_result(id)(i), spec.lo, spec.hi));
+      } else {
+        active[i] = true;
+      }
+    }
+    for (int iteration = 0; iteration < 200; ++iteration) {
+      bool any = false;
+      Lanes x = root;
+      for (int i = 0; i < lane_count; ++i) {
+        if (!active[i]) continue;
+        if (std::abs(f_b(i)) > std::abs(f_a(i))) {
+          std::swap(a(i), b(i)), std::swap(f_a(i), f_b(i));
+          c(i) = a(i), f_c(i) = f_a(i);
+        }
+        const double m = 0.5 * (a(i) - b(i));
+        const double step_min = 0.5 * tolerance * std::min(std::abs(a(i)), std::abs(b(i)));
+        if (std::abs(m) <= step_min || f_b(i) == 0) {  // |a − b| ≤ tolerance × min(|a|, |b|): solve()'s test
+          root(i) = f_b(i) == 0 ? b(i) : 0.5 * (a(i) + b(i));
+          active[i] = false;
+          continue;
+        }
+        any = true;
+        double s = f_b(i) != f_c(i) ? b(i) - f_b(i) * (b(i) - c(i)) / (f_b(i) - f_c(i)) : b(i) + m;
+        if (!((s - b(i)) * (s - (b(i) + m)) <= 0)) s = b(i) + m;
+        if (std::abs(s - b(i)) < step_min) s = b(i) + (m > 0 ? step_min : -step_min);
+        x(i) = s;
+      }
+      if (!any) break;
+      margins_at(x);
+      const Lanes f_x = solver_margins(id);
+      for (int i = 0; i < lane_count; ++i) {
+        if (!active[i]) continue;
+        c(i) = b(i), f_c(i) = f_b(i);
+        b(i) = x(i), f_b(i) = f_x(i);
+        if ((f_b(i) > 0) == (f_a(i) > 0)) a(i) = c(i), f_a(i) = f_c(i);
+      }
+    }
+    for (int i = 0; i < lane_count; ++i)
+      if (active[i]) fail(i, fmt::format("criterion \"{}\": no convergence in 200 iterations", spec.criteria[k]));
+  }
+
+  // Per lane, the root at which every listed margin holds: that criterion binds (as solve()).
+  Lanes chosen_root = roots[0];
+  if (n_criteria > 1) {
+    std::array<double, lane_count> best_slack;
+    std::array<bool, lane_count> found{};
+    best_slack.fill(std::numeric_limits<double>::infinity());
+    for (std::size_t k = 0; k < n_criteria; ++k) {
+      margins_at(roots[k]);
+      for (int i = 0; i < lane_count; ++i) {
+        double worst = std::numeric_limits<double>::infinity();
+        for (std::size_t m = 0; m < n_criteria; ++m)
+          if (m != k) worst = std::min(worst, lane_result(resolved.margins[m])(i));
+        if (!(worst >= -1e-9)) continue;
+        if (!found[i] || worst < best_slack[i]) found[i] = true, best_slack[i] = worst, chosen_root(i) = roots[k](i);
+      }
+    }
+    for (int i = 0; i < lane_count; ++i)
+      if (!found[i]) fail(i, "no value satisfies all the listed criteria at once");
+  }
+  outcome.value = chosen_root;
+  for (int i = 0; i < lane_count; ++i)
+    if (!outcome.converged[i]) outcome.value(i) = std::numeric_limits<double>::quiet_NaN();
+  set_lanes(resolved.unknown, chosen_root);
+  evaluate_lanes(Detail::full);
+  ++outcome.passes;
 }
 
 void Chain::solve_all(std::vector<SolveOutcome>& outcomes) {

@@ -8,6 +8,10 @@ namespace radchain {
 
 Stage::~Stage() = default;  // the key function lives in the framework, so every plugin shares one vtable type
 void Stage::prepare(Context&) {}
+bool Stage::evaluate_lanes(LaneContext&) { return false; }
+
+ScalarAccess::ScalarAccess(Context& context)
+    : results_(context.results), light_(context.light), full_detail_(context.full_detail()) {}
 
 std::string to_string(Kind kind) {
   switch (kind) {

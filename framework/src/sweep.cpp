@@ -240,17 +240,20 @@ int Sweep::run(TableWriter& writer, std::string* failure,
     parallel_chunks(count, 64, [&](std::size_t slot, std::size_t begin, std::size_t end) {
       auto& worker = workers[slot];
       if (!worker) worker = std::make_unique<SweepWorker>(*this);
-      for (std::size_t i = begin; i < end; ++i) {
-        const std::size_t point = range[base + i];
-        double* out = &values[i * n_columns];
-        if (!worker->evaluate(point, out)) {
-          ok[i] = 0;
-          std::lock_guard lock(failure_mutex);
-          if (point < first_failed) first_failed = point, first_message = worker->failure();
+      std::size_t group[lane_count];
+      for (std::size_t i = begin; i < end; i += lane_count) {
+        const std::size_t count = std::min<std::size_t>(lane_count, end - i);
+        for (std::size_t k = 0; k < count; ++k) group[k] = range[base + i + k];
+        worker->evaluate_group(group, count, &values[i * n_columns], &ok[i]);
+        for (std::size_t k = 0; k < count; ++k) {
+          if (!ok[i + k]) {
+            std::lock_guard lock(failure_mutex);
+            if (group[k] < first_failed) first_failed = group[k], first_message = worker->failure_of(k);
+          }
+          std::vector<std::string>& row = cells[i + k];
+          row.reserve(n_columns);
+          for (std::size_t c = 0; c < n_columns; ++c) row.push_back(number_cell(values[(i + k) * n_columns + c]));
         }
-        std::vector<std::string>& row = cells[i];
-        row.reserve(n_columns);
-        for (std::size_t c = 0; c < n_columns; ++c) row.push_back(number_cell(out[c]));
       }
       if (options_.progress) options_.progress->fetch_add(end - begin, std::memory_order_relaxed);
     });
@@ -280,6 +283,59 @@ SweepWorker::SweepWorker(const Sweep& sweep)
     columns_.push_back(Column{id, chain_.results().info(id).display_factor, solved});
   }
   index_.resize(axes_.size());
+  lanes_ = chain_.solves.size() <= 1 && (chain_.solves.empty() || chain_.lanes_can_solve());
+  for (const ParameterRef& a : axes_) lanes_ = lanes_ && !a.spectral();
+}
+
+void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, double* out, char* ok) {
+  const std::size_t n_columns = sweep_.columns();
+  if (!lanes_) {
+    for (std::size_t k = 0; k < count; ++k) {
+      ok[k] = evaluate(points[k], out + k * n_columns) ? 1 : 0;
+      failures_[k] = failure_;
+    }
+    return;
+  }
+  const auto& axes = sweep_.axes();
+  // Each axis's value per lane; a short group repeats its last point in the unused lanes.
+  std::vector<Lanes> values(axes.size());
+  for (int lane = 0; lane < lane_count; ++lane) {
+    const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(lane), count - 1);
+    std::size_t point = points[k];
+    for (std::size_t a = axes.size(); a-- > 0;) {
+      index_[a] = point % axes[a].steps;
+      point /= axes[a].steps;
+    }
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      values[a](lane) = axes[a].value_si(index_[a]);
+      if (static_cast<std::size_t>(lane) < count) out[k * n_columns + a] = axes[a].value(index_[a]);
+    }
+  }
+  chain_.clear_lanes();
+  for (std::size_t a = 0; a < axes.size(); ++a) chain_.set_lanes(axes_[a], values[a]);
+  std::fill(ok, ok + count, 1);
+  if (chain_.solves.empty()) {
+    chain_.evaluate_lanes(Detail::full);
+  } else {
+    chain_.solve_lanes(lane_outcome_);
+    for (std::size_t k = 0; k < count; ++k) {
+      failures_[k].clear();
+      if (lane_outcome_.converged[k]) continue;
+      ok[k] = 0;
+      std::string at;
+      for (std::size_t a = 0; a < axes.size(); ++a)
+        at += fmt::format("{}{} = {:g}{}", a ? ", " : "", axes[a].key, out[k * n_columns + a],
+                          axes[a].unit.empty() ? "" : " " + axes[a].unit);
+      failures_[k] = fmt::format("at {}: the solve for {} failed: {}", at, chain_.solves[0].unknown, lane_outcome_.message[k]);
+    }
+  }
+  const std::size_t offset = axes.size();
+  for (std::size_t k = 0; k < count; ++k)
+    for (std::size_t c = 0; c < columns_.size(); ++c) {
+      const Column& column = columns_[c];
+      out[k * n_columns + offset + c] = (column.solved && !ok[k]) ? std::numeric_limits<double>::quiet_NaN()
+                                                                  : chain_.lane_result(column.id)(static_cast<int>(k)) * column.factor;
+    }
 }
 
 bool SweepWorker::evaluate(std::size_t point, double* out) {

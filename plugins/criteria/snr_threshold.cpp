@@ -23,16 +23,17 @@ const Schema& schema() {
 
 class SnrThreshold final : public Stage {
  public:
-  explicit SnrThreshold(const Params& p) : threshold_(p.handle("threshold")) {
+  explicit SnrThreshold(const Params& p)
+      : threshold_(p.handle("threshold")), detection_(p.handle("detection_probability")),
+        false_alarm_(p.handle("false_alarm_probability")) {
     const bool probabilities = p.has("detection_probability") && p.has("false_alarm_probability");
     if (p.has("threshold") == probabilities)
       p.reject(p.has("threshold") ? "threshold" : "detection_probability",
                "give either threshold, or both detection_probability and false_alarm_probability");
     if (p.has("detection_probability") && !p.has("false_alarm_probability"))
       p.reject("detection_probability", "needs false_alarm_probability as well (T = z(1 - P_fa) + z(P_d))");
-    if (probabilities)
-      from_probabilities_ = physics::snr_threshold_for(p.get("detection_probability"), p.get("false_alarm_probability"));
-    if (p.has("false_alarm_probability")) false_alarm_ = p.get("false_alarm_probability");
+    from_probabilities_ = probabilities;
+    with_false_alarm_ = p.has("false_alarm_probability");
   }
 
   void prepare(Context& c) override {
@@ -40,7 +41,7 @@ class SnrThreshold final : public Stage {
     id_threshold_ = c.declare("threshold", "1", from_probabilities_ ? "T = z(1 - P_fa) + z(P_d), Gaussian" : "input T");
     id_margin_ = c.declare("margin", "1", "SNR/T − 1 (≥ 0: detected, Pan 2010 eq. 10)");
     id_detected_ = c.declare("detected", "1", "1 if SNR ≥ T (to 1e-9 T)");
-    if (false_alarm_) {
+    if (with_false_alarm_) {
       id_false_alarm_ = c.declare("false_alarm_probability", "1", "input P_fa");
       id_detection_probability_ = c.declare("detection_probability", "1",
                                             "P_d at the chain's SNR: Φ(SNR − z(1 − P_fa)) (known signal, Gaussian noise)");
@@ -48,23 +49,49 @@ class SnrThreshold final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double t = from_probabilities_ ? *from_probabilities_ : *threshold_;
-    const double snr = c.results.value(snr_);
-    const double margin = snr / t - 1.0;
-    c.results.set(id_margin_, margin);
-    if (!c.full_detail()) return;
-    c.results.set(id_threshold_, t);
-    // At a solved limit the margin is zero to rounding; 1e-9 keeps that point on the detected side.
-    c.results.set(id_detected_, margin >= -1e-9 ? 1.0 : 0.0);
-    if (false_alarm_) {
-      c.results.set(*id_false_alarm_, *false_alarm_);
-      c.results.set(*id_detection_probability_, physics::detection_probability_at(snr, *false_alarm_));
-    }
+    ScalarAccess a(c);
+    compute(a);
+  }
+  bool evaluate_lanes(LaneContext& c) override {
+    compute(c);
+    return true;
   }
 
  private:
-  const double* threshold_;
-  std::optional<double> from_probabilities_, false_alarm_;
+  template <class Access>
+  void compute(Access& a) {
+    using V = typename Access::Value;
+    V t = a.param(threshold_);
+    if (from_probabilities_) {  // T from (P_d, P_fa): normal quantiles, recomputed only when the pair changes
+      if constexpr (std::is_same_v<V, double>) t = threshold_for(a.param(detection_), a.param(false_alarm_));
+      else for (int i = 0; i < lane_count; ++i) t(i) = threshold_for(a.param(detection_)(i), a.param(false_alarm_)(i));
+    }
+    const V snr = a.value(snr_);
+    const V margin = snr / t - 1.0;
+    a.set(id_margin_, margin);
+    if (!a.full_detail()) return;
+    a.set(id_threshold_, t);
+    // At a solved limit the margin is zero to rounding; 1e-9 keeps that point on the detected side.
+    a.set(id_detected_, indicator(margin >= -1e-9));
+    if (with_false_alarm_) {
+      const V p_fa = a.param(false_alarm_);
+      a.set(*id_false_alarm_, p_fa);
+      V pd = broadcast<V>(0.0);
+      if constexpr (std::is_same_v<V, double>) pd = physics::detection_probability_at(snr, p_fa);
+      else for (int i = 0; i < lane_count; ++i) pd(i) = physics::detection_probability_at(snr(i), p_fa(i));
+      a.set(*id_detection_probability_, pd);
+    }
+  }
+
+  double threshold_for(double detection, double false_alarm) {
+    if (detection != cached_[0] || false_alarm != cached_[1])
+      cached_[0] = detection, cached_[1] = false_alarm, cached_[2] = physics::snr_threshold_for(detection, false_alarm);
+    return cached_[2];
+  }
+
+  const double *threshold_, *detection_, *false_alarm_;
+  bool from_probabilities_ = false, with_false_alarm_ = false;
+  double cached_[3] = {-1, -1, 0};  // P_d, P_fa, T
   ResultId snr_{}, id_threshold_{}, id_margin_{}, id_detected_{};
   std::optional<ResultId> id_false_alarm_, id_detection_probability_;
 };

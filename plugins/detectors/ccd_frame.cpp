@@ -16,6 +16,7 @@
 #include "radchain/plugin.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 namespace {
@@ -119,48 +120,12 @@ class CcdFrame final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double t = *time_;
-    const double n = *window_, pixels = n * n;
-    const double image = c.light.signal.scale * *qe_ * photon_rate_per_scale_ * t;
-    const double ensquared = ensquared_energy(c, n);
-    const double signal = ensquared * image;
-    const double dark = pixels * *dark_ * t;
-    const double levels = std::ldexp(1.0, static_cast<int>(*bits_));  // 2^N
-    const double quant_var = pixels * (paper_quantisation_ ? *well_ / (levels * std::sqrt(12.0))
-                                                           : (*well_ / levels) * (*well_ / levels) / 12.0);
-    const double read_var = pixels * *read_ * *read_;
-    double sky_per_pixel = 0.0;
-    if (id_pixel_angle_) {
-      const double angle = *pitch_ / c.results.value(*focal_length_);
-      c.results.set(*id_pixel_angle_, angle * angle);
-      if (sky_entry_.present && area_ && optics_transmittance_ && sun_magnitude_) {
-        // A solar-spectrum source of magnitude m_sky gives this many electrons per frame (the target's photometry,
-        // per unit ratio of eq. 1); the sky gives that per square arcsecond.
-        const double electrons_per_ratio = photon_rate_per_scale_ * *qe_ * t * c.results.value(*area_) *
-                                           c.results.value(*optics_transmittance_);
-        const double ratio = physics::magnitude_ratio(*sky_, c.results.value(*sun_magnitude_));
-        const double pixel_arcsec2 = angle * angle * arcsec_per_rad * arcsec_per_rad;
-        sky_per_pixel = electrons_per_ratio * ratio * pixel_arcsec2;
-      }
-      c.results.set(*id_sky_pixel_, sky_per_pixel);
-    }
-    const double background = pixels * sky_per_pixel;
-    const double noise = std::sqrt(dark + read_var + quant_var + background + signal);
-    c.results.set(id_signal_, signal);
-    c.results.set(id_noise_, noise);
-    c.results.set(id_snr_, signal / noise);
-    c.results.set(id_time_, t);
-    if (!c.full_detail()) return;  // the noise budget's terms: for the report
-    c.results.set(id_image_, image);
-    c.results.set(id_ensquared_, ensquared);
-    c.results.set(id_pixels_, pixels);
-    c.results.set(id_dark_, dark);
-    c.results.set(id_dark_noise_, std::sqrt(dark));
-    c.results.set(id_read_noise_, std::sqrt(read_var));
-    c.results.set(id_quant_noise_, std::sqrt(quant_var));
-    c.results.set(id_background_, background);
-    c.results.set(id_background_noise_, std::sqrt(background));
-    c.results.set(id_shot_noise_, std::sqrt(signal));
+    ScalarAccess a(c);
+    compute(a);
+  }
+  bool evaluate_lanes(LaneContext& c) override {
+    compute(c);
+    return true;
   }
 
  private:
@@ -173,22 +138,86 @@ class CcdFrame final : public Stage {
     return psf ? "input EE" : "1: all of the image in the window (Pan 2010)";
   }
 
+  template <class Access>
+  void compute(Access& a) {
+    using V = typename Access::Value;
+    using std::sqrt;
+    const V t = a.param(time_), qe = a.param(qe_), well = a.param(well_);
+    const V n = a.param(window_), pixels = n * n;
+    const V image = a.signal_scale() * qe * photon_rate_per_scale_ * t;
+    V ensquared = broadcast<V>(1.0);
+    if (ensquared_entry_.present) ensquared = a.param(ensquared_);
+    else if constexpr (std::is_same_v<V, double>) ensquared = ensquared_energy(a, n, *pitch_);
+    else if (psf_wavelength_ || gaussian_fwhm_) ensquared_energy_lanes(a, n, ensquared);
+    const V signal = ensquared * image;
+    const V dark = pixels * a.param(dark_) * t;
+    V levels = broadcast<V>(0.0);  // 2^N (N ≤ 32: exact as a double)
+    auto power_of_two = [](double bits) { return static_cast<double>(std::uint64_t{1} << static_cast<int>(bits)); };
+    if constexpr (std::is_same_v<V, double>) levels = power_of_two(*bits_);
+    else if (!a.varies(bits_)) levels = broadcast<V>(power_of_two(*bits_));
+    else for (int i = 0; i < lane_count; ++i) levels(i) = power_of_two(a.param(bits_)(i));
+    const V step = well / levels;
+    const V quant_var = paper_quantisation_ ? V(pixels * step / std::sqrt(12.0)) : V(pixels * step * step / 12.0);
+    const V read = a.param(read_);
+    const V read_var = pixels * read * read;
+    V sky_per_pixel = broadcast<V>(0.0);
+    if (id_pixel_angle_) {
+      const V angle = a.param(pitch_) / a.value(*focal_length_);
+      a.set(*id_pixel_angle_, angle * angle);
+      if (sky_entry_.present && area_ && optics_transmittance_ && sun_magnitude_) {
+        // A solar-spectrum source of magnitude m_sky gives this many electrons per frame (the target's photometry,
+        // per unit ratio of eq. 1); the sky gives that per square arcsecond.
+        const V electrons_per_ratio = photon_rate_per_scale_ * qe * t * a.value(*area_) * a.value(*optics_transmittance_);
+        const V ratio = physics::magnitude_ratio(a.param(sky_), a.value(*sun_magnitude_));
+        const V pixel_arcsec2 = angle * angle * (arcsec_per_rad * arcsec_per_rad);
+        sky_per_pixel = electrons_per_ratio * ratio * pixel_arcsec2;
+      }
+      a.set(*id_sky_pixel_, sky_per_pixel);
+    }
+    const V background = pixels * sky_per_pixel;
+    const V noise = sqrt(dark + read_var + quant_var + background + signal);
+    a.set(id_signal_, signal);
+    a.set(id_noise_, noise);
+    a.set(id_snr_, signal / noise);
+    a.set(id_time_, t);
+    if (!a.full_detail()) return;  // the noise budget's terms: for the report
+    a.set(id_image_, image);
+    a.set(id_ensquared_, ensquared);
+    a.set(id_pixels_, pixels);
+    a.set(id_dark_, dark);
+    a.set(id_dark_noise_, sqrt(dark));
+    a.set(id_read_noise_, sqrt(read_var));
+    a.set(id_quant_noise_, sqrt(quant_var));
+    a.set(id_background_, background);
+    a.set(id_background_noise_, sqrt(background));
+    a.set(id_shot_noise_, sqrt(signal));
+  }
+
   // EE as given; else from the optics' PSF (cached: it changes only with the window, pitch, λ, N, ε or FWHM);
-  // else 1.
-  double ensquared_energy(Context& c, double n) {
-    if (ensquared_entry_.present) return *ensquared_;
+  // else 1. One lane's values in lane mode.
+  void ensquared_energy_lanes(LaneContext& a, const Lanes& n, Lanes& out) {
+    const Lanes side = n * a.param(pitch_);
+    auto at = [&](const std::optional<ResultId>& id, int lane) { return id ? a.value(*id)(lane) : 0.0; };
+    for (int i = 0; i < lane_count; ++i)
+      out(i) = ensquared_energy_of(side(i), at(psf_wavelength_, i), at(f_number_, i), at(obscuration_, i),
+                                   at(gaussian_fwhm_, i), 0.0);
+  }
+  double ensquared_energy(ScalarAccess& a, double n, double pitch) {
+    auto at = [&](const std::optional<ResultId>& id) { return id ? a.value(*id) : 0.0; };
+    return ensquared_energy_of(n * pitch, at(psf_wavelength_), at(f_number_), at(obscuration_), at(gaussian_fwhm_),
+                               *ensquared_);
+  }
+  double ensquared_energy_of(double side, double lambda, double f_number, double eps, double fwhm, double given) {
+    if (ensquared_entry_.present) return given;
     if (!pitch_entry_.present) return 1.0;
-    const double side = n * *pitch_;
     if (psf_wavelength_ && f_number_) {
-      const double lambda = c.results.value(*psf_wavelength_), f_number = c.results.value(*f_number_);
-      const double eps = obscuration_ ? c.results.value(*obscuration_) : 0.0;
       if (side != cache_[0] || lambda != cache_[1] || f_number != cache_[2] || eps != cache_[3]) {
         cache_[0] = side, cache_[1] = lambda, cache_[2] = f_number, cache_[3] = eps;
         cached_ensquared_ = physics::airy_ensquared_energy(side, lambda, f_number, eps);
       }
       return cached_ensquared_;
     }
-    if (gaussian_fwhm_) return physics::gaussian_ensquared_energy(side, c.results.value(*gaussian_fwhm_));
+    if (gaussian_fwhm_) return physics::gaussian_ensquared_energy(side, fwhm);
     return 1.0;
   }
 

@@ -92,35 +92,55 @@ class Telescope final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double d = *aperture_;
-    const double area = std::numbers::pi * d * d / 4.0 * (1.0 - *obscuration_ * *obscuration_);
-    c.results.set(id_area_, area);
-    c.results.set(id_aperture_, d);
-    c.results.set(id_transmittance_, *transmittance_);
-    c.results.set(id_obscuration_, *obscuration_);
-    if (form_ == RadiationForm::focal_power) {
-      c.light.signal.scale *= area * *transmittance_;
-    } else {
-      const double n = *focal_length_ / d;
-      const double radiance_to_irradiance = std::numbers::pi * (1.0 - *obscuration_ * *obscuration_) * *transmittance_ / (4.0 * n * n);
-      c.light.signal.scale *= radiance_to_irradiance;
-      if (c.light.background.form == RadiationForm::focal_irradiance) c.light.background.scale *= radiance_to_irradiance;
-    }
-    if (has_focal_length_) {
-      c.results.set(id_focal_, *focal_length_);
-      c.results.set(id_f_number_, *focal_length_ / d);
-    }
-    if (airy_) {
-      if (*obscuration_ != ring_obscuration_)  // the zero moves with ε (a scalar parameter): recompute on change
-        first_dark_ring_v_ = physics::airy_first_dark_ring_v(*obscuration_), ring_obscuration_ = *obscuration_;
-      c.results.set(id_psf_wavelength_, *psf_wavelength_);
-      c.results.set(id_airy_radius_, first_dark_ring_v_ * *psf_wavelength_ * (*focal_length_ / d) / std::numbers::pi);
-    }
-    if (gaussian_) c.results.set(id_gaussian_fwhm_, *gaussian_fwhm_);
-    if (target_lux_ && c.full_detail()) c.results.set(id_flux_, std::numbers::pi * d * d / 4.0 * c.results.value(*target_lux_));
+    ScalarAccess a(c);
+    compute(a);
+  }
+  bool evaluate_lanes(LaneContext& c) override {
+    compute(c);
+    return true;
   }
 
- private:
+  private:
+  template <class Access>
+  void compute(Access& a) {
+    using V = typename Access::Value;
+    using std::sqrt;
+    const V d = a.param(aperture_), eps = a.param(obscuration_), tau = a.param(transmittance_);
+    const V unobscured = 1.0 - eps * eps;
+    const V area = std::numbers::pi / 4.0 * d * d * unobscured;
+    a.set(id_area_, area);
+    a.set(id_aperture_, d);
+    a.set(id_transmittance_, tau);
+    a.set(id_obscuration_, eps);
+    if (form_ == RadiationForm::focal_power) {
+      a.signal_scale() *= area * tau;
+    } else {
+      const V n = a.param(focal_length_) / d;
+      const V radiance_to_irradiance = std::numbers::pi * unobscured * tau / (4.0 * n * n);
+      a.signal_scale() *= radiance_to_irradiance;
+      if (a.light().background.form == RadiationForm::focal_irradiance) a.background_scale() *= radiance_to_irradiance;
+    }
+    if (has_focal_length_) {
+      a.set(id_focal_, a.param(focal_length_));
+      a.set(id_f_number_, a.param(focal_length_) / d);
+    }
+    if (airy_) {
+      // The first dark ring moves with ε (a scalar parameter): recomputed when it changes, per lane.
+      V ring = broadcast<V>(0.0);
+      if constexpr (std::is_same_v<V, double>) ring = first_dark_ring_v(eps);
+      else for (int i = 0; i < lane_count; ++i) ring(i) = first_dark_ring_v(eps(i));
+      a.set(id_psf_wavelength_, a.param(psf_wavelength_));
+      a.set(id_airy_radius_, ring * a.param(psf_wavelength_) * (a.param(focal_length_) / d) / std::numbers::pi);
+    }
+    if (gaussian_) a.set(id_gaussian_fwhm_, a.param(gaussian_fwhm_));
+    if (target_lux_ && a.full_detail()) a.set(id_flux_, std::numbers::pi / 4.0 * d * d * a.value(*target_lux_));
+  }
+
+  double first_dark_ring_v(double eps) {
+    if (eps != ring_obscuration_) first_dark_ring_v_ = physics::airy_first_dark_ring_v(eps), ring_obscuration_ = eps;
+    return first_dark_ring_v_;
+  }
+
   const Params& params_;
   const double *aperture_, *obscuration_, *transmittance_, *focal_length_, *psf_wavelength_, *gaussian_fwhm_;
   bool airy_, gaussian_;

@@ -38,16 +38,31 @@ class PointMagnitude final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double ratio = physics::magnitude_ratio(*magnitude_, c.results.value(sun_magnitude_));
-    c.light.signal.scale = ratio * c.light.up_path_scale;
-    c.results.set(id_ratio_, ratio);
-    if (!c.full_detail()) return;  // target.illuminance feeds only the telescope's reported luminous flux
-    // source.illuminance is at the source's distance: back to 1 AU.
-    const double au = sun_distance_ ? c.results.value(*sun_distance_) / constants::astronomical_unit_m : 1.0;
-    c.results.set(id_illuminance_, ratio * c.results.value(sun_illuminance_) * au * au);
+    ScalarAccess a(c);
+    compute(a);
+  }
+  bool evaluate_lanes(LaneContext& c) override {
+    compute(c);
+    return true;
   }
 
- private:
+  private:
+  template <class Access>
+  void compute(Access& a) {
+    using V = typename Access::Value;
+    const V ratio = physics::magnitude_ratio(a.param(magnitude_), a.value(sun_magnitude_));
+    a.signal_scale() = ratio * a.up_path_scale();
+    a.set(id_ratio_, ratio);
+    if (!a.full_detail()) return;  // target.illuminance feeds only the telescope's reported luminous flux
+    // source.illuminance is at the source's distance: back to 1 AU.
+    V to_1au = broadcast<V>(1.0);
+    if (sun_distance_) {
+      const V au = a.value(*sun_distance_) / constants::astronomical_unit_m;
+      to_1au = au * au;
+    }
+    a.set(id_illuminance_, ratio * a.value(sun_illuminance_) * to_1au);
+  }
+
   const double* magnitude_;
   ResultId sun_magnitude_{}, sun_illuminance_{}, id_illuminance_{}, id_ratio_{};
   std::optional<ResultId> sun_distance_;

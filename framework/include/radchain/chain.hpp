@@ -14,6 +14,7 @@
 #include "radchain/results.hpp"
 #include "radchain/schema.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -84,6 +85,14 @@ struct SolveOutcome {
   std::vector<std::pair<std::string, double>> roots;  // each criterion's own root (SI)
 };
 
+// A [[solve]] in lanes: one root per lane (Chain::solve_lanes).
+struct LaneSolveOutcome {
+  Lanes value;                                  // SI; NaN where the lane's solve failed
+  std::array<bool, lane_count> converged{};
+  std::array<std::string, lane_count> message;  // why not, where not
+  int passes = 0;                               // lane evaluations
+};
+
 struct ExpectationOutcome {
   Expectation spec;
   double computed_si = 0;
@@ -121,6 +130,20 @@ class Chain {
   // Everything from scratch (both phases, every result) + solves + expectations.
   Report run();
 
+  // Lanes (radchain/lanes.hpp): the scalar phase for lane_count points at once. set_lanes() gives a non-spectral
+  // parameter a value per lane (it keeps its scalar value for evaluate()); evaluate_lanes() runs from the first
+  // stage with such a parameter, taking earlier stages' results from the scalar phase, and lane_result() reads.
+  void set_lanes(const ParameterRef& parameter, const Lanes& values);
+  void clear_lanes() { lane_parameters_.clear(), lane_slots_.clear(); }
+  void evaluate_lanes(Detail detail = Detail::full);
+  const Lanes& lane_result(ResultId id) const { return lane_results_[id]; }
+  // The chain's one [[solve]] for each lane's point (the lane parameters as set), in lockstep: Dekker's method
+  // (secant or bisection, bracketing) on ln(1 + margin), to solve()'s tolerance (bracket ≤ 2^-47 relative).
+  // TOMS 748 (solve()) keeps per-point state a lockstep loop cannot share; both bracket the same root. Ends with
+  // a Detail::full lane evaluation at the roots. Needs lanes_can_solve().
+  bool lanes_can_solve() const;  // exactly one [[solve]], on a non-spectral unknown
+  void solve_lanes(LaneSolveOutcome& outcome);
+
   // A numeric parameter "<section>.<key>". Throws std::out_of_range for an unknown section or a key that is
   // not numeric, and the schema's std::logic_error for an unknown key.
   ParameterRef parameter(const std::string& qualified_key);
@@ -149,14 +172,27 @@ class Chain {
   };
   void prepare_from(std::size_t first);
   void evaluate_from(std::size_t first, Detail detail);
+  void evaluate_lane_by_lane(StageSlot& slot, Detail detail);  // a stage without evaluate_lanes()
 
   Results results_;
   Light light_;
   std::vector<Light> light_before_;    // per stage: the light its prepare() started from (shared spectra)
   std::vector<Scales> scales_before_;  // per stage: the scales its evaluate() started from
+  std::vector<double> saved_values_;   // scratch of evaluate_lane_by_lane()
   std::size_t spectral_from_ = 0;      // first stage whose prepare() must re-run (stages.size(): none)
   std::size_t scalar_from_ = 0;        // first stage whose evaluate() must re-run
   std::size_t essential_from_ = SIZE_MAX;  // first stage last evaluated with Detail::essential
+  std::uint64_t scalar_version_ = 0;       // counts scalar evaluations (lanes copy their results when it moves)
+  // Lanes: the varying parameters (with their stages), each result and the light's scalars per lane.
+  struct LaneSlot {
+    double* address;
+    std::size_t stage;
+  };
+  std::vector<LaneParameter> lane_parameters_;
+  std::vector<LaneSlot> lane_slots_;  // parallel to lane_parameters_
+  std::vector<Lanes> lane_results_;
+  std::uint64_t lane_base_version_ = UINT64_MAX;  // the scalar evaluation lane_results_ were copied from
+  LaneScales lane_scales_;
   // Each [[solve]] resolved once: its unknown, its criteria's margins, the result that echoes the solved value.
   struct ResolvedSolve {
     ParameterRef unknown;

@@ -2,6 +2,7 @@
 // The plugin interface. A plugin is one .cpp file ending in RADCHAIN_PLUGIN(info_function), where
 // info_function returns a PluginInfo: ABI version, kind, name, schema and factory. The host reads the
 // exported ABI number before it calls anything in the library and refuses a mismatch.
+#include "radchain/lanes.hpp"
 #include "radchain/light.hpp"
 #include "radchain/results.hpp"
 #include "radchain/schema.hpp"
@@ -70,6 +71,9 @@ class Stage {
   // Read scalar parameters through Params::handle() pointers. Under Detail::essential, results no later stage
   // reads may be left unset (they keep their last values).
   virtual void evaluate(Context& context) = 0;
+  // The scalar phase for lane_count points at once (radchain/lanes.hpp). Returns false when the stage has no
+  // lane form; the chain then runs evaluate() once per lane.
+  virtual bool evaluate_lanes(LaneContext& context);
 };
 
 struct PluginInfo {

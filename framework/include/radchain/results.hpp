@@ -35,6 +35,8 @@ class Results {
   const ResultInfo& info(ResultId id) const { return infos_[id]; }
   std::size_t size() const { return infos_.size(); }
   bool is_set(ResultId id) const;  // false while NaN (not evaluated)
+  const std::vector<double>& values() const { return values_; }
+  void restore(const std::vector<double>& values) { values_ = values; }  // (same size: saved by values())
   void clear_values();             // all NaN
 
  private:

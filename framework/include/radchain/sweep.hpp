@@ -13,6 +13,7 @@
 #include "radchain/chain.hpp"
 #include "radchain/shard.hpp"
 
+#include <array>
 #include <atomic>
 #include <functional>
 #include <string>
@@ -88,6 +89,12 @@ class SweepWorker {
   // a solve failed (failure() says why; the unknown's value is nan).
   bool evaluate(std::size_t point, double* out);
   const std::string& failure() const { return failure_; }
+  // Points points[0 .. count) (count ≤ lane_count) into consecutive rows of out; ok[k] false where a solve failed
+  // (failure_of(k) says why). In lanes (radchain/lanes.hpp) when no axis and no solved unknown is spectral and the
+  // file has at most one [[solve]]; else one point at a time. Each point's row is the same whichever points
+  // share its group.
+  void evaluate_group(const std::size_t* points, std::size_t count, double* out, char* ok);
+  const std::string& failure_of(std::size_t k) const { return failures_[k]; }
   Chain& chain() { return chain_; }
 
  private:
@@ -104,6 +111,9 @@ class SweepWorker {
   std::vector<SolveOutcome> outcomes_;
   std::vector<std::size_t> index_;
   std::string failure_;
+  bool lanes_ = false;  // evaluate_group() in lanes
+  LaneSolveOutcome lane_outcome_;
+  std::array<std::string, lane_count> failures_;
 };
 
 // Draws a 1-D sweep with gnuplot (pngcairo, else png): one panel per series against the axis. Throws

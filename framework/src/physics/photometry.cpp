@@ -17,6 +17,9 @@ double luminous(const Spectrum& spectral_radiometric, const Spectrum& v_lambda, 
 double magnitude_ratio(double magnitude, double sun_magnitude) {
   return std::exp(0.4 * std::numbers::ln10 * (sun_magnitude - magnitude));
 }
+Lanes magnitude_ratio(const Lanes& magnitude, const Lanes& sun_magnitude) {
+  return (0.4 * std::numbers::ln10 * (sun_magnitude - magnitude)).exp();
+}
 
 double magnitude_from_ratio(double ratio, double sun_magnitude) { return sun_magnitude - 2.5 * std::log10(ratio); }
 

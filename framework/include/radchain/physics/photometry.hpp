@@ -6,6 +6,7 @@
 //     radiometric spectral flux Φ_λ = Φ_λmax Φr(λ), Φ_λmax = F / (K_m ∫ V Φr dλ)
 //   Pan et al. 2010 eqs. (6)-(7): photon rate n(λ) = Φ_λ λ/(hc); electrons n_e = ∫ n(λ) η(λ) dλ
 #include "radchain/constants.hpp"
+#include "radchain/lanes.hpp"
 #include "radchain/spectrum.hpp"
 
 #include <string>
@@ -20,6 +21,7 @@ double luminous(const Spectrum& spectral_radiometric, const Spectrum& v_lambda,
 
 // Pan 2010 eq. (1): the ratio E_t / E_sun for an object of visual magnitude m.
 double magnitude_ratio(double magnitude, double sun_magnitude = sun_visual_magnitude_pan2010);
+Lanes magnitude_ratio(const Lanes& magnitude, const Lanes& sun_magnitude);
 // Inverse of eq. (1): m = m_sun - 2.5 lg(E_t / E_sun).
 double magnitude_from_ratio(double ratio, double sun_magnitude = sun_visual_magnitude_pan2010);
 
