@@ -90,6 +90,72 @@ TEST(Sweep, EveryPointEqualsRunWithSet) {
   }
 }
 
+// Sweeps over non-spectral axes run in lanes (Chain::solve_lanes, Dekker in lockstep); `run` solves one point with
+// TOMS 748. Both bracket the root to 2^-47 relative, so they agree to ~1e-14; every other result follows from the
+// root. Checked on every bundled sensor with one [[solve]], including a target without a lane form (the sphere,
+// evaluated lane by lane), in groups that are full, short (13 points = 8 + 5) and out of order.
+TEST(Sweep, LanesAgreeWithRunAtEveryPoint) {
+  struct Case {
+    std::string file, axis, range;
+    std::vector<std::string> results;
+  };
+  const std::string sensors = std::string(RADCHAIN_SOURCE_DIR) + "/sensors/";
+  const std::vector<Case> cases = {
+      {sbv_file, "optics.aperture", "10 cm:40 cm:13", {"target.magnitude", "detector.snr", "detector.shot_noise"}},
+      {sensors + "pan2010-auxiliary-sensor.toml", "detector.integration_time", "0.1 s:2 s:13", {"target.magnitude", "detector.noise_electrons"}},
+      {sensors + "sbv-smallest-sphere.toml", "target.range", "500 km:2000 km:13", {"target.diameter", "detector.signal_electrons"}},
+  };
+  for (const Case& c : cases) {
+    SweepOptions options;
+    options.sensor_file = c.file;
+    options.axes = {{c.axis, c.range}};
+    options.results = c.results;
+    const Sweep sweep(options);
+    SweepWorker worker(sweep);
+    const std::size_t n = sweep.columns();
+    const std::vector<std::size_t> groups[] = {{0, 1, 2, 3, 4, 5, 6, 7}, {12, 8, 10, 9, 11}};
+    for (const auto& group : groups) {
+      std::vector<double> out(group.size() * n);
+      std::vector<char> ok(group.size());
+      worker.evaluate_group(group.data(), group.size(), out.data(), ok.data());
+      for (std::size_t k = 0; k < group.size(); ++k) {
+        ASSERT_TRUE(ok[k]) << c.file << " point " << group[k] << ": " << worker.failure_of(k);
+        const std::string value = fmt::format("{:.17g} {}", sweep.axes()[0].value(group[k]), sweep.axes()[0].unit);
+        Chain chain = load_sensor(c.file, {{c.axis, value}});
+        const Report report = chain.run();
+        EXPECT_EQ(out[k * n], sweep.axes()[0].value(group[k]));
+        for (std::size_t r = 0; r < c.results.size(); ++r) {
+          const double expected = report.value(c.results[r]).value() * chain.results().info(*chain.results().find(c.results[r])).display_factor;
+          EXPECT_NEAR(out[k * n + 1 + r], expected, 1e-12 * std::abs(expected)) << c.file << " point " << group[k] << " " << c.results[r];
+        }
+      }
+    }
+  }
+}
+
+// A lane whose bracket holds no root fails alone: the others are solved, its solved column is nan, and the message
+// names the point.
+TEST(Sweep, ALaneWithoutARootFailsAlone) {
+  SweepOptions options;
+  options.sensor_file = std::string(RADCHAIN_SOURCE_DIR) + "/sensors/sbv-smallest-sphere.toml";
+  options.axes = {{"target.range", "1000 km:1e9 km:8"}};  // far ranges need a sphere larger than the bracket's 100 m
+  options.results = {"target.diameter"};
+  const Sweep sweep(options);
+  SweepWorker worker(sweep);
+  const std::size_t group[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  std::vector<double> out(8 * sweep.columns());
+  std::vector<char> ok(8);
+  worker.evaluate_group(group, 8, out.data(), ok.data());
+  EXPECT_TRUE(ok[0]);
+  EXPECT_NEAR(out[1], 3.387, 0.001);  // cm: the 1000 km sphere of the sensor file
+  EXPECT_FALSE(ok[7]);
+  EXPECT_TRUE(std::isnan(out[7 * 2 + 1]));
+  EXPECT_NE(worker.failure_of(7).find("at target.range = 1e+09 km: the solve for target.diameter failed: criterion "
+                                      "\"detection\" has the same sign at both ends of the bracket"),
+            std::string::npos)
+      << worker.failure_of(7);
+}
+
 TEST(SweepCli, CsvOfAOneAxisSweep) {
   Scratch scratch;
   const CliResult r = run_cli(scratch, "sweep '" + sbv_file +
