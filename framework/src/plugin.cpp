@@ -10,9 +10,6 @@ Stage::~Stage() = default;  // the key function lives in the framework, so every
 void Stage::prepare(Context&) {}
 bool Stage::evaluate_lanes(LaneContext&) { return false; }
 
-ScalarAccess::ScalarAccess(Context& context)
-    : results_(context.results), light_(context.light), full_detail_(context.full_detail()) {}
-
 std::string to_string(Kind kind) {
   switch (kind) {
     case Kind::platform: return "platform";

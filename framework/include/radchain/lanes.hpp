@@ -29,9 +29,6 @@
 
 namespace radchain {
 
-enum class Detail;
-class Context;
-
 inline constexpr int lane_count = 8;
 using Lanes = Eigen::Array<double, lane_count, 1>;
 
@@ -65,30 +62,7 @@ Lanes indicator(const Eigen::ArrayBase<Derived>& condition) {
   return condition.template cast<double>();
 }
 
-// What a stage's scalar phase sees when it evaluates one point (a view of Context).
-class ScalarAccess {
- public:
-  using Value = double;
-  explicit ScalarAccess(Context& context);
-
-  double param(const double* handle) const { return *handle; }
-  bool varies(const double*) const { return false; }
-  double value(ResultId id) const { return results_.value(id); }
-  void set(ResultId id, double value) { results_.set(id, value); }
-  double& illumination_scale() { return light_.illumination_scale; }
-  double& signal_scale() { return light_.signal.scale; }
-  double& background_scale() { return light_.background.scale; }
-  double& up_path_scale() { return light_.up_path_scale; }
-  const Light& light() const { return light_; }  // forms and spectra (set in the spectral phase)
-  bool full_detail() const { return full_detail_; }
-
- private:
-  Results& results_;
-  Light& light_;
-  bool full_detail_;
-};
-
-// What it sees when it evaluates lane_count points.
+// What a stage's scalar phase sees when it evaluates lane_count points (ScalarAccess, plugin.hpp: one point).
 class LaneContext {
  public:
   using Value = Lanes;

@@ -61,6 +61,30 @@ class Context {
   std::size_t next_declaration_ = 0;
 };
 
+// What a stage's scalar phase sees when it evaluates one point (a view of Context).
+class ScalarAccess {
+ public:
+  using Value = double;
+  explicit ScalarAccess(Context& context)
+      : results_(context.results), light_(context.light), full_detail_(context.full_detail()) {}
+
+  double param(const double* handle) const { return *handle; }
+  bool varies(const double*) const { return false; }
+  double value(ResultId id) const { return results_.value(id); }
+  void set(ResultId id, double value) { results_.set(id, value); }
+  double& illumination_scale() { return light_.illumination_scale; }
+  double& signal_scale() { return light_.signal.scale; }
+  double& background_scale() { return light_.background.scale; }
+  double& up_path_scale() { return light_.up_path_scale; }
+  const Light& light() const { return light_; }  // forms and spectra (set in the spectral phase)
+  bool full_detail() const { return full_detail_; }
+
+ private:
+  Results& results_;
+  Light& light_;
+  bool full_detail_;
+};
+
 class Stage {
  public:
   virtual ~Stage();
