@@ -17,8 +17,12 @@ double luminous(const Spectrum& spectral_radiometric, const Spectrum& v_lambda, 
 double magnitude_ratio(double magnitude, double sun_magnitude) {
   return std::exp(0.4 * std::numbers::ln10 * (sun_magnitude - magnitude));
 }
+// Per lane with glibc's exp (dispatched to its FMA form at run time): faster than Eigen's SSE2 packet exp, and the
+// same bits as the scalar form.
 Lanes magnitude_ratio(const Lanes& magnitude, const Lanes& sun_magnitude) {
-  return (0.4 * std::numbers::ln10 * (sun_magnitude - magnitude)).exp();
+  Lanes ratio;
+  for (int i = 0; i < lane_count; ++i) ratio(i) = magnitude_ratio(magnitude(i), sun_magnitude(i));
+  return ratio;
 }
 
 double magnitude_from_ratio(double ratio, double sun_magnitude) { return sun_magnitude - 2.5 * std::log10(ratio); }
