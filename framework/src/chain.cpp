@@ -214,7 +214,7 @@ static double solver_margin(double margin) {
   const auto bits = std::bit_cast<std::uint64_t>(r);
   const int exponent = static_cast<int>(bits >> 52) - 1023;  // r > 0 and normal: no sign bit, no subnormal
   const double t = std::bit_cast<double>((bits & 0x000fffffffffffffULL) | 0x3ff0000000000000ULL) - 1.0;
-  return exponent + t * (10.0 - t * (4.0 - t)) / 7.0;
+  return exponent + t * (10.0 / 7.0 - t * (4.0 / 7.0 - t * (1.0 / 7.0)));
 }
 
 void Chain::resolve_solves(const std::vector<ResultId>& echo_ids) {
@@ -360,21 +360,23 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
       Lanes x = root;
       for (int i = 0; i < lane_count; ++i) {
         if (!active[i]) continue;
-        if (std::abs(f_b(i)) > std::abs(f_a(i))) {
-          std::swap(a(i), b(i)), std::swap(f_a(i), f_b(i));
-          c(i) = a(i), f_c(i) = f_a(i);
-        }
-        const double m = 0.5 * (a(i) - b(i));
-        const double step_min = 0.5 * tolerance * std::min(std::abs(a(i)), std::abs(b(i)));
-        if (std::abs(m) <= step_min || f_b(i) == 0) {  // |a − b| ≤ tolerance × min(|a|, |b|): solve()'s test
-          root(i) = f_b(i) == 0 ? b(i) : 0.5 * (a(i) + b(i));
+        // (Selects rather than branches: which end is best flips unpredictably.)
+        const bool swap = std::abs(f_b(i)) > std::abs(f_a(i));
+        const double a_i = swap ? b(i) : a(i), b_i = swap ? a(i) : b(i);
+        const double fa_i = swap ? f_b(i) : f_a(i), fb_i = swap ? f_a(i) : f_b(i);
+        const double c_i = swap ? a_i : c(i), fc_i = swap ? fa_i : f_c(i);
+        a(i) = a_i, b(i) = b_i, c(i) = c_i, f_a(i) = fa_i, f_b(i) = fb_i, f_c(i) = fc_i;
+        const double m = 0.5 * (a_i - b_i);
+        const double step_min = 0.5 * tolerance * std::min(std::abs(a_i), std::abs(b_i));
+        if (std::abs(m) <= step_min || fb_i == 0) {  // |a − b| ≤ tolerance × min(|a|, |b|): solve()'s test
+          root(i) = fb_i == 0 ? b_i : 0.5 * (a_i + b_i);
           active[i] = false;
           continue;
         }
         any = true;
-        double s = f_b(i) != f_c(i) ? b(i) - f_b(i) * (b(i) - c(i)) / (f_b(i) - f_c(i)) : b(i) + m;
-        if (!((s - b(i)) * (s - (b(i) + m)) <= 0)) s = b(i) + m;
-        if (std::abs(s - b(i)) < step_min) s = b(i) + (m > 0 ? step_min : -step_min);
+        const double secant = fb_i != fc_i ? b_i - fb_i * (b_i - c_i) / (fb_i - fc_i) : b_i + m;
+        double s = (secant - b_i) * (secant - (b_i + m)) <= 0 ? secant : b_i + m;  // between b and the midpoint
+        s = std::abs(s - b_i) < step_min ? b_i + std::copysign(step_min, m) : s;
         x(i) = s;
       }
       if (!any) break;
@@ -382,9 +384,10 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
       const Lanes f_x = solver_margins(id);
       for (int i = 0; i < lane_count; ++i) {
         if (!active[i]) continue;
+        const bool same_side = (f_x(i) > 0) == (f_a(i) > 0);  // then the old b becomes the contrapoint
+        a(i) = same_side ? b(i) : a(i), f_a(i) = same_side ? f_b(i) : f_a(i);
         c(i) = b(i), f_c(i) = f_b(i);
         b(i) = x(i), f_b(i) = f_x(i);
-        if ((f_b(i) > 0) == (f_a(i) > 0)) a(i) = c(i), f_a(i) = f_c(i);
       }
     }
     for (int i = 0; i < lane_count; ++i)
