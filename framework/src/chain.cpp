@@ -202,7 +202,7 @@ double Chain::result(const std::string& name) const {
 // The margin a solver drives to zero, in a form close to linear in the unknown. Every criterion's margin is
 // achieved/required − 1 (docs/architecture.md), and the physics behind the ratio r = 1 + margin is a power law or
 // an exponential in the unknown (SNR ∝ D², ∝ 10^{-0.4 m}): log r is nearly straight where the margin itself spans
-// decades over the bracket (TOMS 748 needs 9 evaluations for the SBV magnitude instead of 16). Any strictly
+// decades over the bracket (TOMS 748 needs 8 iterations for the SBV magnitude instead of 17). Any strictly
 // increasing g with g(0) = 0 has the same root, so log2 r need not be exact: its exponent plus
 // t(10 − 4t + t²)/7 for the mantissa 1 + t (exact at powers of two, within 0.005 in between, increasing, and
 // smooth to the second derivative across octaves, which TOMS 748's cubic steps need) costs a few integer
