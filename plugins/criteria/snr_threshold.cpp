@@ -21,7 +21,9 @@ const Schema& schema() {
   return s;
 }
 
-class SnrThreshold final : public Stage {
+class SnrThreshold final : public LaneStage<SnrThreshold> {
+  friend class LaneStage<SnrThreshold>;  // calls compute()
+
  public:
   explicit SnrThreshold(const Params& p)
       : threshold_(p.handle("threshold")), detection_(p.handle("detection_probability")),
@@ -46,15 +48,6 @@ class SnrThreshold final : public Stage {
       id_detection_probability_ = c.declare("detection_probability", "1",
                                             "P_d at the chain's SNR: Φ(SNR − z(1 − P_fa)) (known signal, Gaussian noise)");
     }
-  }
-
-  void evaluate(Context& c) override {
-    ScalarAccess a(c);
-    compute(a);
-  }
-  bool evaluate_lanes(LaneContext& c) override {
-    compute(c);
-    return true;
   }
 
  private:

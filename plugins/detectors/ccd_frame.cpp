@@ -52,7 +52,9 @@ const Schema& schema() {
   return s;
 }
 
-class CcdFrame final : public Stage {
+class CcdFrame final : public LaneStage<CcdFrame> {
+  friend class LaneStage<CcdFrame>;  // calls compute()
+
  public:
   explicit CcdFrame(const Params& p)
       : params_(p), qe_(p.handle("qe")), time_(p.handle("integration_time")), well_(p.handle("full_well")),
@@ -117,15 +119,6 @@ class CcdFrame final : public Stage {
       id_sky_pixel_ = c.declare("sky_electrons_per_pixel", "electron",
                                 "S(m_sky) Ω_pixel/arcsec²: one pixel's sky electrons per frame", "e-");
     }
-  }
-
-  void evaluate(Context& c) override {
-    ScalarAccess a(c);
-    compute(a);
-  }
-  bool evaluate_lanes(LaneContext& c) override {
-    compute(c);
-    return true;
   }
 
  private:

@@ -36,7 +36,9 @@ const Schema& schema() {
   return s;
 }
 
-class Telescope final : public Stage {
+class Telescope final : public LaneStage<Telescope> {
+  friend class LaneStage<Telescope>;  // calls compute()
+
  public:
   explicit Telescope(const Params& p)
       : params_(p), aperture_(p.handle("aperture")), obscuration_(p.handle("obscuration")),
@@ -89,15 +91,6 @@ class Telescope final : public Stage {
     if (gaussian_) id_gaussian_fwhm_ = c.declare("gaussian_fwhm", "m", "input FWHM of the Gaussian PSF", "um");
     if (auto lux = c.find("target.illuminance"))
       target_lux_ = *lux, id_flux_ = c.declare("luminous_flux", "lm", "Pan 2010 eq. (2): F = π D² E_t / 4", "lm");
-  }
-
-  void evaluate(Context& c) override {
-    ScalarAccess a(c);
-    compute(a);
-  }
-  bool evaluate_lanes(LaneContext& c) override {
-    compute(c);
-    return true;
   }
 
   private:

@@ -20,7 +20,9 @@ const Schema& schema() {
   return s;
 }
 
-class PointMagnitude final : public Stage {
+class PointMagnitude final : public LaneStage<PointMagnitude> {
+  friend class LaneStage<PointMagnitude>;  // calls compute()
+
  public:
   explicit PointMagnitude(const Params& p) : magnitude_(p.handle("magnitude")) {}
 
@@ -35,15 +37,6 @@ class PointMagnitude final : public Stage {
     sun_distance_ = c.find("source.distance");
     id_illuminance_ = c.declare("illuminance", "lx", "Pan 2010 eq. (1): E_t = 10^{0.4(m_sun - m)} E_s", "lx");
     id_ratio_ = c.declare("irradiance_ratio", "1", "Pan 2010 eq. (1): E_t / E_s");
-  }
-
-  void evaluate(Context& c) override {
-    ScalarAccess a(c);
-    compute(a);
-  }
-  bool evaluate_lanes(LaneContext& c) override {
-    compute(c);
-    return true;
   }
 
   private:

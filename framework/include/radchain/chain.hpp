@@ -127,7 +127,7 @@ class Chain {
   // iterations) lets stages skip results that only break totals down; a later Detail::full evaluation
   // recomputes them.
   void evaluate(Detail detail = Detail::full);
-  // Everything from scratch (both phases, every result) + solves + expectations.
+  // Every result again (the spectral phase only where something spectral changed) + solves + expectations.
   Report run();
 
   // Lanes (radchain/lanes.hpp): the scalar phase for lane_count points at once. set_lanes() gives a non-spectral
@@ -138,9 +138,9 @@ class Chain {
   void evaluate_lanes(Detail detail = Detail::full);
   const Lanes& lane_result(ResultId id) const { return lane_results_[id]; }
   // The chain's one [[solve]] for each lane's point (the lane parameters as set), in lockstep: Dekker's method
-  // (secant or bisection, bracketing) on ln(1 + margin), to solve()'s tolerance (bracket ≤ 2^-47 relative).
-  // TOMS 748 (solve()) keeps per-point state a lockstep loop cannot share; both bracket the same root. Ends with
-  // a Detail::full lane evaluation at the roots. Needs lanes_can_solve().
+  // (secant or bisection, bracketing) on log2(1 + margin), to solve_all()'s tolerance (bracket ≤ 2^-47
+  // relative). TOMS 748 (solve_all()) keeps per-point state a lockstep loop cannot share; both bracket the same
+  // root. Ends with a Detail::full lane evaluation at the roots. Needs lanes_can_solve().
   bool lanes_can_solve() const;  // exactly one [[solve]], on a non-spectral unknown
   void solve_lanes(LaneSolveOutcome& outcome);
 

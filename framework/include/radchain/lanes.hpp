@@ -3,16 +3,18 @@
 // alone waits on each square root, exponential and division of its chain in turn; eight independent points fill
 // the CPU's pipelines and Eigen's SIMD packets. This is what makes a million-point sweep cost milliseconds.
 //
-// A plugin writes its scalar phase once, as a template over an accessor, and instantiates it twice:
+// A plugin writes its scalar phase once, as a template over an accessor, and derives from LaneStage (plugin.hpp),
+// which runs it for one point (ScalarAccess) and for lane_count points (LaneContext):
 //
-//   template <class Access> void compute(Access& a) {
-//     using V = typename Access::Value;                     // double, or Lanes
-//     const V d = a.param(aperture_);                       // a Params::handle(): per lane when swept
-//     a.set(id_area_, std::numbers::pi / 4 * d * d);        // results: per lane
-//     a.signal_scale() *= ...;                              // the light's scalars: per lane
-//   }
-//   void evaluate(Context& c) override { ScalarAccess a(c); compute(a); }
-//   bool evaluate_lanes(LaneContext& c) override { compute(c); return true; }
+//   class Telescope final : public LaneStage<Telescope> {
+//     friend class LaneStage<Telescope>;
+//     template <class Access> void compute(Access& a) {
+//       using V = typename Access::Value;                     // double, or Lanes
+//       const V d = a.param(aperture_);                       // a Params::handle(): per lane when swept
+//       a.set(id_area_, std::numbers::pi / 4 * d * d);        // results: per lane
+//       a.signal_scale() *= ...;                              // the light's scalars: per lane
+//     }
+//   };
 //
 // Use `using std::sqrt; sqrt(x)` (and exp, log1p, ...): argument-dependent lookup picks Eigen's array functions
 // for Lanes. A plugin without evaluate_lanes() still works in lanes: the chain runs its scalar evaluate() once

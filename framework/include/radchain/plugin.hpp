@@ -100,6 +100,22 @@ class Stage {
   virtual bool evaluate_lanes(LaneContext& context);
 };
 
+// A stage whose scalar phase is one template, `template <class Access> void compute(Access&)` (radchain/lanes.hpp),
+// run for one point (ScalarAccess) and for lane_count points (LaneContext):
+//   class Telescope final : public LaneStage<Telescope> { public: template <class Access> void compute(Access&); };
+template <class Derived>
+class LaneStage : public Stage {
+ public:
+  void evaluate(Context& context) final {
+    ScalarAccess access(context);
+    static_cast<Derived*>(this)->compute(access);
+  }
+  bool evaluate_lanes(LaneContext& context) final {
+    static_cast<Derived*>(this)->compute(context);
+    return true;
+  }
+};
+
 struct PluginInfo {
   std::uint32_t abi_version;
   const char* framework_version;
