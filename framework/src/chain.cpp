@@ -40,7 +40,7 @@ void Chain::prepare_from(std::size_t first) {
   for (std::size_t k = first; k < stages.size(); ++k) {
     StageSlot& slot = stages[k];
     light_before_[k] = light_;
-    Context context(results_, light_, slot.section, slot.plugin, Detail::full, &slot.declarations);
+    Context context(results_, light_, slot.section, slot.plugin, Detail::full, &slot.declarations, &slot.lookups);
     slot.stage->prepare(context);
   }
   spectral_from_ = stages.size();

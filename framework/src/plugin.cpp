@@ -59,9 +59,9 @@ ResultId Context::declare(std::string_view name, std::string_view si_unit, std::
     // The same declaration as at the last spectral phase: "<section>.<name>" with the same unit and equation.
     const ResultId id = (*declarations_)[next_declaration_];
     const ResultInfo& info = results.info(id);
-    const std::string_view known = info.name;
-    if (known.size() == section.size() + 1 + name.size() && known.ends_with(name) && known.starts_with(section) &&
-        known[section.size()] == '.' && info.si_unit == si_unit && info.equation == equation) {
+    const std::string_view known = info.name;  // "<section>.<name>": the section is this stage's by construction
+    if (known.size() == section.size() + 1 + name.size() && known.ends_with(name) && info.si_unit == si_unit &&
+        info.equation == equation) {
       ++next_declaration_;
       return id;
     }
@@ -76,8 +76,25 @@ ResultId Context::declare(std::string_view name, std::string_view si_unit, std::
   return id;
 }
 
-ResultId Context::require(std::string_view qualified_name) const {
-  if (auto id = results.find(qualified_name)) return *id;
+std::optional<ResultId> Context::find(std::string_view qualified_name) {
+  if (lookups_ && next_lookup_ < lookups_->size()) {
+    const ResultId id = (*lookups_)[next_lookup_];
+    if (id < results.size() && results.info(id).name == qualified_name) {
+      ++next_lookup_;
+      return id;
+    }
+  }
+  const std::optional<ResultId> id = results.find(qualified_name);
+  if (lookups_ && id) {  // (a miss is not remembered: a later spectral phase may find the result)
+    lookups_->resize(next_lookup_);
+    lookups_->push_back(*id);
+    ++next_lookup_;
+  }
+  return id;
+}
+
+ResultId Context::require(std::string_view qualified_name) {
+  if (auto id = find(qualified_name)) return *id;
   throw InputError({}, fmt::format("{} (plugin \"{}\")", section, plugin), "",
                    fmt::format("needs the result \"{}\", which no earlier stage provides: the chain's plugins do not fit together",
                                qualified_name));

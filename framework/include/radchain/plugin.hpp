@@ -35,8 +35,10 @@ enum class Detail {
 class Context {
  public:
   Context(Results& results, Light& light, const std::string& section, const std::string& plugin,
-          Detail detail = Detail::full, std::vector<ResultId>* declarations = nullptr)
-      : results(results), light(light), section(section), plugin(plugin), detail(detail), declarations_(declarations) {}
+          Detail detail = Detail::full, std::vector<ResultId>* declarations = nullptr,
+          std::vector<ResultId>* lookups = nullptr)
+      : results(results), light(light), section(section), plugin(plugin), detail(detail), declarations_(declarations),
+        lookups_(lookups) {}
 
   Results& results;
   Light& light;
@@ -51,14 +53,17 @@ class Context {
                    std::string_view display_unit = {});
   // A result another stage must have declared; a missing one is a chain that does not fit together
   // (InputError naming both).
-  ResultId require(std::string_view qualified_name) const;
-  std::optional<ResultId> find(std::string_view qualified_name) const { return results.find(qualified_name); }
+  ResultId require(std::string_view qualified_name);
+  // (Like declare(): the same look-ups in the same order at every spectral phase are name comparisons.)
+  std::optional<ResultId> find(std::string_view qualified_name);
   // The incoming radiation has a form this stage cannot take.
   [[noreturn]] void refuse_form(const std::string& what, RadiationForm form) const;
 
  private:
   std::vector<ResultId>* declarations_;  // this stage's declarations at its last spectral phase, in order
   std::size_t next_declaration_ = 0;
+  std::vector<ResultId>* lookups_;       // the results it found, in order
+  std::size_t next_lookup_ = 0;
 };
 
 // What a stage's scalar phase sees when it evaluates one point (a view of Context).
