@@ -269,6 +269,15 @@ int Sweep::run(TableWriter& writer, std::string* failure,
 
 // --- SweepWorker -------------------------------------------------------------------------------------------
 
+// "at optics.aperture = 20 cm: the solve for target.magnitude failed: <why>" (axis values as written in the row).
+static std::string solve_failure(const std::vector<SweepAxis>& axes, const double* row, const std::string& unknown,
+                                 const std::string& why) {
+  std::string at;
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    at += fmt::format("{}{} = {:g}{}", a ? ", " : "", axes[a].key, row[a], axes[a].unit.empty() ? "" : " " + axes[a].unit);
+  return fmt::format("at {}: the solve for {} failed: {}", at, unknown, why);
+}
+
 SweepWorker::SweepWorker(const Sweep& sweep)
     : sweep_(sweep), chain_(load_sensor(sweep.options().sensor_file, sweep.options().overrides)) {
   for (const auto& a : sweep.axes()) axes_.push_back(chain_.parameter(a.key));
@@ -322,11 +331,7 @@ void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, d
       failures_[k].clear();
       if (lane_outcome_.converged[k]) continue;
       ok[k] = 0;
-      std::string at;
-      for (std::size_t a = 0; a < axes.size(); ++a)
-        at += fmt::format("{}{} = {:g}{}", a ? ", " : "", axes[a].key, out[k * n_columns + a],
-                          axes[a].unit.empty() ? "" : " " + axes[a].unit);
-      failures_[k] = fmt::format("at {}: the solve for {} failed: {}", at, chain_.solves[0].unknown, lane_outcome_.message[k]);
+      failures_[k] = solve_failure(axes, out + k * n_columns, chain_.solves[0].unknown, lane_outcome_.message[k]);
     }
   }
   const std::size_t offset = axes.size();
@@ -361,10 +366,7 @@ bool SweepWorker::evaluate(std::size_t point, double* out) {
     for (const auto& o : outcomes_) {
       if (o.converged) continue;
       if (converged) {
-        std::string at;
-        for (std::size_t a = 0; a < axes.size(); ++a)
-          at += fmt::format("{}{} = {:g}{}", a ? ", " : "", axes[a].key, out[a], axes[a].unit.empty() ? "" : " " + axes[a].unit);
-        failure_ = fmt::format("at {}: the solve for {} failed: {}", at, o.spec.unknown, o.message);
+        failure_ = solve_failure(axes, out, o.spec.unknown, o.message);
       }
       converged = false;
     }
