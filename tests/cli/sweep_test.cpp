@@ -210,3 +210,43 @@ TEST(SweepCli, PlotIsAPng) {
 }
 
 }  // namespace
+
+// Regression (issue 18): a sensor name with a newline and a gnuplot system() line ran that command when a plot
+// was drawn. Every outside text now reaches gnuplot as an argument, never as script text.
+namespace {
+std::string hostile_name(const radchain::test::fs::path& marker) {
+  return "name = \"x'\\nsystem(\\\"touch " + marker.string() + "\\\")\\nprint \\\"@ARG1\\\" `touch " + marker.string() +
+         "`\"";
+}
+}  // namespace
+
+TEST(SweepCli, PlotTextsAreDataNotScript) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot is not installed";
+  Scratch scratch;
+  const fs::path marker = scratch / "injected";
+  const fs::path sensor = scratch / "hostile.toml";
+  write_text(sensor, sbv_with("name = \"MSX SBV (Pan 2010, Table 1)\"", hostile_name(marker)));
+  const fs::path png = scratch / "plot\n system(\"touch x\").png";  // a path is data too
+  const CliResult r = run_cli(scratch, "sweep '" + sensor.string() + "' --set 'optics.aperture=15 cm:30 cm:3' --plot '" +
+                                           png.string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(marker)) << "the sensor name ran a command through gnuplot";
+  EXPECT_EQ(read_text(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+}
+
+TEST(MtfCli, PlotTextsAreDataNotScript) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot is not installed";
+  Scratch scratch;
+  const fs::path marker = scratch / "injected";
+  const fs::path sensor = scratch / "hostile.toml";
+  std::string text = read_text(source_dir + "/sensors/kolobrodov-1996-ccd151-computed.toml");
+  const std::string name = "name = \"Kolobrodov 1996 CCD151 camera (computed from spectra)\"";
+  ASSERT_NE(text.find(name), std::string::npos);
+  write_text(sensor, text.replace(text.find(name), name.size(), hostile_name(marker)));
+  const fs::path png = scratch / "mtf.png";
+  const CliResult r = run_cli(scratch, "mtf '" + sensor.string() + "' --out '" + (scratch / "mtf.csv").string() +
+                                           "' --plot '" + png.string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(marker)) << "the sensor name ran a command through gnuplot";
+  EXPECT_EQ(read_text(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+}
