@@ -1,7 +1,9 @@
 // A catalogue of 1,000 sensor files (the bundled sensors/, copied round-robin into a temporary folder) evaluated
 // with their solves and [expected] checks. Target: ≤ 2 s wall on 2 cores.
-#include "radchain/catalogue.hpp"
-#include "radchain/shard.hpp"
+#include "radchain/batch/shard.hpp"
+#include "radchain/batch/table.hpp"
+#include "radchain/batch/thread_pool.hpp"
+#include "radchain/batch/catalogue.hpp"
 
 #include "bench_common.hpp"
 

@@ -1,7 +1,7 @@
 // One sensor on one core (sensors/msx-sbv.toml, Pan 2010: limiting magnitude 15.5565 at SNR 5): the spectral phase,
 // the limiting-magnitude solve, one forward evaluation. Targets and results: docs/performance.md.
 #include "radchain/chain.hpp"
-#include "radchain/sweep.hpp"
+#include "radchain/batch/sweep.hpp"
 
 #include "bench_common.hpp"
 

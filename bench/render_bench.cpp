@@ -7,7 +7,7 @@
 // EarthScene: the Kolobrodov camera over the built-in test scene (N×N map at 1.25 m → 5 m), diffraction and
 //   element MTF by FFTW, NEE noise, 12-bit ADC; throughput in input megapixels per second.
 #include "radchain/chain.hpp"
-#include "radchain/render.hpp"
+#include "radchain/imaging/render.hpp"
 
 #include <benchmark/benchmark.h>
 

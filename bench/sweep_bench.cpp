@@ -1,9 +1,11 @@
 // A million aperture values (15 cm .. 30 cm) for the SBV: forward evaluations and limiting-magnitude solves, one
 // point at a time and in lanes (eight at once, what `radchain sweep` does), on one core and on all cores.
 // Targets: ≤ 10 ms per million forward evaluations, ≤ 200 ms per million solves.
+#include "radchain/batch/shard.hpp"
+#include "radchain/batch/table.hpp"
+#include "radchain/batch/thread_pool.hpp"
 #include "radchain/chain.hpp"
-#include "radchain/shard.hpp"
-#include "radchain/sweep.hpp"
+#include "radchain/batch/sweep.hpp"
 
 #include "bench_common.hpp"
 

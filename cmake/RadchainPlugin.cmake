@@ -14,10 +14,10 @@ function(radchain_add_plugin)
     message(FATAL_ERROR "radchain_add_plugin(${ARG_NAME}): KIND must be one of ${kinds}")
   endif()
   add_library(${ARG_NAME} MODULE ${ARG_SOURCES})
-  if(TARGET radchain_framework)
-    target_link_libraries(${ARG_NAME} PRIVATE radchain_framework radchain_warnings)
+  if(TARGET radchain_core)
+    target_link_libraries(${ARG_NAME} PRIVATE radchain_core radchain_warnings)
   else()
-    target_link_libraries(${ARG_NAME} PRIVATE radchain::framework)
+    target_link_libraries(${ARG_NAME} PRIVATE radchain::core)
   endif()
   set_target_properties(${ARG_NAME} PROPERTIES
     PREFIX ""

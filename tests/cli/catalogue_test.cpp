@@ -1,7 +1,7 @@
 // `radchain catalogue`: rows per sensor, pass/fail logic, exit codes (0 ok, 1 a failed check, 2 bad input) and
 // the three formats. References: sensors/msx-sbv.toml (Pan 2010 Table 2: 15.55 ± 0.05; the chain gives 15.5565).
 #include "cli_helpers.hpp"
-#include "radchain/catalogue.hpp"
+#include "radchain/batch/catalogue.hpp"
 #include "radchain/error.hpp"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // and closed forms of the chain: collecting area ∝ D², so (20/15)² - 1 = +77.8 %; at the limiting magnitude the
 // signal is fixed by SNR = T, so the flux ratio D² QE gives Δm = 2.5 log10((20/15)² · 0.30/0.27).
 #include "cli_helpers.hpp"
-#include "radchain/compare.hpp"
+#include "radchain/batch/compare.hpp"
 #include "radchain/error.hpp"
 
 #include <gtest/gtest.h>

@@ -1,10 +1,12 @@
 // Sharding and merge: every point in exactly one shard, and the merged output byte-identical to the unsharded
 // run, for catalogues and sweeps, both shard orders and every format.
 #include "cli_helpers.hpp"
-#include "radchain/catalogue.hpp"
+#include "radchain/batch/shard.hpp"
+#include "radchain/batch/table.hpp"
+#include "radchain/batch/thread_pool.hpp"
+#include "radchain/batch/catalogue.hpp"
 #include "radchain/error.hpp"
-#include "radchain/shard.hpp"
-#include "radchain/sweep.hpp"
+#include "radchain/batch/sweep.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // `radchain sweep`: range parsing with units, the grid, equality with `run --set` at every point, bad ranges.
 #include "cli_helpers.hpp"
 #include "radchain/error.hpp"
-#include "radchain/sweep.hpp"
+#include "radchain/batch/sweep.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

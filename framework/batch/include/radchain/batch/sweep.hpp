@@ -1,0 +1,119 @@
+#pragma once
+// `radchain sweep`: one sensor file evaluated over a grid of parameter values, its solves re-run at every
+// point. Each axis is `--set key=from:to:steps` ("optics.aperture=15 cm:30 cm:16": 16 values from 0.15 m to
+// 0.30 m); several axes make a grid, the first axis outermost. Values are spaced evenly in the unit the range is
+// written in (so "15 cm:30 cm:16" gives exactly the values `--set optics.aperture="20 cm"` gives) and converted
+// to SI once.
+//
+// Every worker thread owns a Chain loaded once from the file; a point changes parameters through Chain::set()
+// and re-runs what they affect: the scalar phase from the changed stage on, the spectral phase only for a
+// spectral parameter.
+// Before each point the solved unknowns go back to their values in the file, so a point's result does not
+// depend on which points the thread ran before it: the output is the same for any thread count or shard.
+#include "radchain/chain.hpp"
+#include "radchain/batch/table.hpp"
+
+#include <array>
+#include <atomic>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace radchain {
+
+struct SweepAxis {
+  std::string key;            // "optics.aperture"
+  std::string range;          // as written: "15 cm:30 cm:16"
+  double from = 0, to = 0;    // in `unit`
+  std::size_t steps = 1;
+  std::string unit;           // the unit the range is written in ("" for plain numbers)
+  double to_si = 1;           // value_si = value × to_si
+  double value(std::size_t i) const;  // in `unit`; the last value is `to` exactly
+  double value_si(std::size_t i) const { return value(i) * to_si; }
+};
+
+// `--set` values: "from:to:steps" is a range (any ':' makes it one), anything else a fixed value.
+bool is_sweep_range(const std::string& value);
+
+// Parses "from:to:steps" for a numeric parameter of `chain`. Throws InputError (one line) for a malformed range,
+// a missing or wrong unit, steps that are not a whole number ≥ 1, values outside the parameter's accepted range,
+// a non-integer value for an integer parameter, a parameter that is not numeric or that a [[solve]] determines.
+SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::string& range);
+
+struct SweepOptions {
+  std::string sensor_file;
+  std::vector<Override> overrides;                        // fixed values: --set key=value
+  std::vector<std::pair<std::string, std::string>> axes;  // --set key=from:to:steps, outermost first
+  std::vector<std::string> results;                       // result columns; empty: every result
+  ShardSpec shard;
+  std::atomic<std::size_t>* progress = nullptr;           // counts finished points
+};
+
+class Sweep {
+ public:
+  // Loads the sensor once to check the axes and the result names. Throws InputError.
+  explicit Sweep(SweepOptions options);
+
+  const SweepOptions& options() const { return options_; }
+  const std::vector<SweepAxis>& axes() const { return axes_; }
+  const std::vector<std::string>& results() const { return results_; }  // names of the result columns
+  const std::vector<std::string>& result_units() const { return units_; }  // their display units
+  std::size_t points() const { return points_; }                          // the whole grid
+  std::size_t columns() const { return axes_.size() + results_.size(); }
+  // Columns: each axis as "<key>_<unit>", then each result as "<name>_<display unit>" (no suffix for "1"),
+  // the convention of the spectra/ CSV headers.
+  TableLayout layout() const;
+  std::string job() const;  // what identifies the job for merge (file, overrides, axes, results)
+  // Index along each axis of a grid point (the last axis varies fastest).
+  std::vector<std::size_t> indices(std::size_t point) const;
+
+  // Runs the shard's points on all cores and writes one row per point in point order. `observer` sees each
+  // point's values (axes in their units, then results in display units) in point order. Returns 1 if a solve
+  // failed at some point (its unknown's cell is nan; `failure` says where and why), else 0.
+  int run(TableWriter& writer, std::string* failure = nullptr,
+          const std::function<void(std::size_t point, const double* values)>& observer = {});
+
+ private:
+  SweepOptions options_;
+  std::vector<SweepAxis> axes_;
+  std::vector<std::string> results_, units_;
+  std::size_t points_ = 1;
+};
+
+// One worker's chain (load_sensor once), evaluating grid points.
+class SweepWorker {
+ public:
+  explicit SweepWorker(const Sweep& sweep);
+  // Evaluates a grid point into out[0 .. columns): axes in their units, results in display units. false when
+  // a solve failed (failure() says why; the unknown's value is nan).
+  bool evaluate(std::size_t point, double* out);
+  const std::string& failure() const { return failure_; }
+  // Points points[0 .. count) (count ≤ lane_count) into consecutive rows of out; ok[k] false where a solve failed
+  // (failure_of(k) says why). In lanes (radchain/lanes.hpp) when no axis and no solved unknown is spectral and the
+  // file has at most one [[solve]]; else one point at a time. Each point's row is the same whichever points
+  // share its group.
+  void evaluate_group(const std::size_t* points, std::size_t count, double* out, char* ok);
+  const std::string& failure_of(std::size_t k) const { return failures_[k]; }
+  Chain& chain() { return chain_; }
+
+ private:
+  struct Column {
+    ResultId id;
+    double factor;
+    bool solved;  // a solved unknown: nan when its solve failed
+  };
+  const Sweep& sweep_;
+  Chain chain_;
+  std::vector<ParameterRef> axes_;
+  std::vector<std::pair<ParameterRef, double>> unknowns_;  // solved parameters and their values in the file
+  std::vector<Column> columns_;
+  std::vector<SolveOutcome> outcomes_;
+  std::vector<std::size_t> index_;
+  std::string failure_;
+  bool lanes_ = false;  // evaluate_group() in lanes
+  LaneSolveOutcome lane_outcome_;
+  std::array<std::string, lane_count> failures_;
+};
+
+}  // namespace radchain

@@ -1,0 +1,64 @@
+#pragma once
+// The tabular output of the batch commands (catalogue, sweep, merge): rows in point order, so that the output
+// does not depend on the thread count, rendered as aligned text, CSV or JSON. With an active shard
+// (radchain/batch/shard.hpp) the writer writes a shard file instead.
+#include "radchain/batch/shard.hpp"
+
+#include <cstddef>
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace radchain {
+
+enum class TableFormat { text, csv, json };
+// "text", "csv", "json"; throws InputError otherwise.
+TableFormat parse_table_format(const std::string& name);
+std::string to_string(TableFormat format);
+// The format a file name asks for: .csv, .json, .txt; nullopt for anything else.
+std::optional<TableFormat> table_format_of_path(const std::string& path);
+
+struct TableLayout {
+  std::string kind;                  // the job that makes the table: "catalogue", "sweep"
+  std::vector<std::string> columns;
+  std::vector<bool> numeric;         // per column: right-aligned in text, bare numbers in JSON
+};
+
+// Footer of a table (text: a last line; JSON: "summary"), computed from the rows, so that a merged table gets
+// the same footer as the unsharded one.
+class TableSummary {
+ public:
+  virtual ~TableSummary();
+  virtual void row(std::size_t point, const std::vector<std::string>& cells) = 0;
+  virtual std::string text(std::size_t points) const = 0;  // "" = no footer
+};
+// The summary of a kind of table (catalogue: files and checks), or nullptr.
+std::unique_ptr<TableSummary> summary_for(const std::string& kind);
+
+// Writes rows as they come (text is buffered: its columns are aligned over all rows).
+class TableWriter {
+ public:
+  // `points` is the whole job's count; `job` describes the job (command, inputs, options: not the shard), so
+  // that merge refuses shards of different jobs. With an active shard the writer writes a shard file.
+  TableWriter(std::ostream& out, TableFormat format, TableLayout layout, std::size_t points, ShardSpec shard = {},
+              const std::string& job = {});
+  ~TableWriter();
+  TableWriter(const TableWriter&) = delete;
+  TableWriter& operator=(const TableWriter&) = delete;
+
+  const TableLayout& layout() const;
+  void row(std::size_t point, const std::vector<std::string>& cells);
+  // Writes what follows the rows; `exit_code` is what the command returns (a shard file records it).
+  void finish(int exit_code);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// A cell for a number: "{:.10g}", "nan" for NaN.
+std::string number_cell(double value);
+
+}  // namespace radchain

@@ -1,0 +1,236 @@
+// `radchain catalogue`: many sensor files, one table of key results against their [expected] references.
+#include "radchain/batch/shard.hpp"
+#include "radchain/batch/table.hpp"
+#include "radchain/batch/thread_pool.hpp"
+#include "radchain/batch/catalogue.hpp"
+
+#include "radchain/error.hpp"
+#include "radchain/plugin_host.hpp"
+#include "radchain/units.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+namespace radchain {
+namespace fs = std::filesystem;
+namespace {
+
+enum Column { sensor, result, computed, reference, unit, delta, delta_pct, check, note, column_count };
+
+std::string value6(double v) { return std::isnan(v) ? "nan" : fmt::format("{:.6g}", v); }
+
+std::string unit_cell(const std::string& unit) { return unit == "1" ? std::string() : unit; }
+
+std::vector<std::string> empty_row(const std::string& stem) {
+  std::vector<std::string> row(column_count);
+  row[sensor] = stem;
+  return row;
+}
+
+class CatalogueSummary final : public TableSummary {
+ public:
+  void row(std::size_t, const std::vector<std::string>& cells) override {
+    const std::string& c = cells[check];
+    if (c == "ok" || c == "FAIL") ++checks_;
+    if (c == "FAIL") ++failed_;
+    if (c == "ERROR") ++errors_;
+  }
+  std::string text(std::size_t points) const override {
+    std::string text = fmt::format("{} sensor file{}, {} check{}: ", points, points == 1 ? "" : "s", checks_,
+                                   checks_ == 1 ? "" : "s");
+    if (failed_ == 0 && errors_ == 0) return text + "all passed";
+    std::vector<std::string> parts;
+    if (failed_) parts.push_back(fmt::format("{} FAILED", failed_));
+    if (errors_) parts.push_back(fmt::format("{} file{} with bad input", errors_, errors_ == 1 ? "" : "s"));
+    return text + join(parts);
+  }
+
+ private:
+  std::size_t checks_ = 0, failed_ = 0, errors_ = 0;
+};
+
+}  // namespace
+
+std::vector<std::string> catalogue_files(const std::vector<std::string>& inputs) {
+  std::vector<std::string> files;
+  for (const auto& input : inputs) {
+    std::error_code ec;
+    if (fs::is_directory(input, ec)) {
+      std::vector<std::string> found;
+      for (const auto& e : fs::directory_iterator(input, ec))
+        if (e.is_regular_file() && e.path().extension() == ".toml") found.push_back(e.path().string());
+      if (found.empty())
+        throw InputError(SourceLocation{input, 0, 0}, "catalogue", "", "the folder holds no sensor files (*.toml)");
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else if (fs::exists(input, ec)) {
+      files.push_back(input);
+    } else {
+      throw InputError(SourceLocation{input, 0, 0}, "catalogue", "", "no such file or folder");
+    }
+  }
+  if (files.empty()) throw InputError(SourceLocation{"catalogue", 0, 0}, "", "", "no sensor files given");
+  return files;
+}
+
+TableLayout catalogue_layout() {
+  return TableLayout{"catalogue",
+                     {"sensor", "result", "computed", "reference", "unit", "delta", "delta_pct", "check", "note"},
+                     {false, false, true, true, false, true, true, false, false}};
+}
+
+std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, const Report& report,
+                                                     const std::vector<std::string>& extra_results) {
+  const std::string stem = fs::path(file).stem().string();
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < report.results.size(); ++i) index.emplace(report.results[i].name, i);
+  std::vector<std::vector<std::string>> rows;
+
+  // [expected] checks: computed and reference in the unit the reference was written in.
+  std::vector<std::string> checked;
+  for (const auto& e : report.expectations) {
+    auto row = empty_row(stem);
+    row[result] = e.spec.result;
+    checked.push_back(e.spec.result);
+    const auto it = index.find(e.spec.result);
+    double factor = 1;
+    std::string shown_unit;
+    if (it != index.end()) {
+      const ResultInfo& info = report.results[it->second];
+      factor = info.display_factor;
+      shown_unit = info.display_unit;
+      if (!e.spec.display_unit.empty()) {
+        factor = 1.0 / units::conversion(e.spec.display_unit, info.si_unit).factor;
+        shown_unit = e.spec.display_unit;
+      }
+    }
+    const double ref = e.spec.value_si * factor;
+    row[reference] = value6(ref);
+    row[unit] = unit_cell(shown_unit);
+    row[check] = e.passed ? "ok" : "FAIL";
+    row[note] = e.spec.source;
+    if (e.spec.follows_si)
+      row[note] = fmt::format("follows = {}: the value checked{}{}", e.spec.follows_as_written,
+                              e.spec.source.empty() ? "" : "; ", e.spec.source);
+    if (!e.found) {
+      row[note] = "not computed by this sensor";
+    } else {
+      const double c = e.computed_si * factor;
+      row[computed] = value6(c);
+      row[delta] = fmt::format("{:+.4g}", c - ref);
+      if (ref != 0) row[delta_pct] = fmt::format("{:+.3g}", 100.0 * (c - ref) / std::abs(ref));
+    }
+    rows.push_back(std::move(row));
+  }
+
+  // Solved unknowns: a key result each; a solve that failed is a failed check even when [expected] covers it.
+  for (const auto& s : report.solves) {
+    const bool covered = std::find(checked.begin(), checked.end(), s.spec.unknown) != checked.end();
+    if (covered && s.converged) continue;
+    auto row = empty_row(stem);
+    row[result] = s.spec.unknown;
+    if (const auto it = index.find(s.spec.unknown); it != index.end() && s.converged) {
+      const ResultInfo& info = report.results[it->second];
+      row[computed] = value6(s.value_si * info.display_factor);
+      row[unit] = unit_cell(info.display_unit);
+    }
+    row[check] = s.converged ? "ok" : "FAIL";
+    row[note] = s.converged ? fmt::format("[[solve]] root of {}", join(s.spec.criteria))
+                            : "[[solve]] failed: " + s.message;
+    rows.push_back(std::move(row));
+  }
+
+  for (const auto& name : extra_results) {
+    auto row = empty_row(stem);
+    row[result] = name;
+    if (const auto it = index.find(name); it != index.end()) {
+      const ResultInfo& info = report.results[it->second];
+      row[computed] = value6(report.values[it->second] * info.display_factor);
+      row[unit] = unit_cell(info.display_unit);
+      row[note] = info.equation;
+    } else {
+      row[note] = "not computed by this sensor";
+    }
+    rows.push_back(std::move(row));
+  }
+  if (rows.empty()) {
+    auto row = empty_row(stem);
+    row[note] = "no [expected] references and no [[solve]] (add --results to show results)";
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+std::vector<std::string> catalogue_error_row(const std::string& file, const std::string& message) {
+  auto row = empty_row(fs::path(file).stem().string());
+  row[check] = "ERROR";
+  row[note] = message;
+  return row;
+}
+
+void preload_plugins() {
+  PluginHost& host = PluginHost::instance();
+  for (const auto& file : host.discover()) {
+    try {
+      host.load_file(file.path);
+    } catch (const std::exception&) {
+      // A broken library is reported by the sensor file that asks for it.
+    }
+  }
+}
+
+int run_catalogue(const std::vector<std::string>& files, const CatalogueOptions& options, TableWriter& writer,
+                  std::vector<std::string>* errors) {
+  const PointRange points = shard_points(options.shard, files.size());
+  struct Outcome {
+    std::vector<std::vector<std::string>> rows;
+    std::string error;
+  };
+  std::vector<Outcome> outcomes(points.count);
+  preload_plugins();
+  parallel_chunks(points.count, 1, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::string& file = files[points[i]];
+      Outcome& out = outcomes[i];
+      try {
+        Chain chain = load_sensor(file, options.overrides);
+        const Report report = chain.run();
+        out.rows = catalogue_rows(file, report, options.extra_results);
+      } catch (const InputError& error) {
+        out.error = error.what();
+      } catch (const std::exception& error) {
+        out.error = fmt::format("{}: internal error: {}", file, error.what());
+      }
+      if (!out.error.empty()) out.rows = {catalogue_error_row(file, out.error)};
+      if (options.progress) options.progress->fetch_add(1, std::memory_order_relaxed);
+    }
+  });
+  bool failed = false, bad_input = false;
+  for (std::size_t i = 0; i < points.count; ++i) {
+    for (const auto& row : outcomes[i].rows) {
+      failed = failed || row[check] == "FAIL";
+      writer.row(points[i], row);
+    }
+    if (!outcomes[i].error.empty()) {
+      bad_input = true;
+      if (errors) errors->push_back(outcomes[i].error);
+    }
+  }
+  return bad_input ? 2 : failed ? 1 : 0;
+}
+
+std::string catalogue_job(const std::vector<std::string>& files, const CatalogueOptions& options) {
+  std::string job = "catalogue\n";
+  for (const auto& f : files) job += "file " + f + "\n";
+  for (const auto& o : options.overrides) job += "set " + o.key + "=" + o.value + "\n";
+  for (const auto& r : options.extra_results) job += "result " + r + "\n";
+  return job;
+}
+
+std::unique_ptr<TableSummary> catalogue_summary() { return std::make_unique<CatalogueSummary>(); }
+
+}  // namespace radchain

@@ -1,0 +1,233 @@
+// Shards of a batch job: which points a shard runs, and merging shard files into the unsharded output.
+#include "radchain/batch/shard.hpp"
+
+#include "radchain/error.hpp"
+#include "table_text.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace radchain {
+using namespace table_detail;
+
+ShardSpec parse_shard(const std::string& text, const std::string& order) {
+  ShardSpec shard;
+  const auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument(text);
+    shard.index = parse_count(text.substr(0, slash));
+    shard.count = parse_count(text.substr(slash + 1));
+  } catch (const std::invalid_argument&) {
+    shard.index = 0;
+  }
+  if (shard.index < 1 || shard.index > shard.count)
+    throw InputError(SourceLocation{"--shard", 0, 0}, "", text, "expected k/n with 1 <= k <= n, e.g. --shard 2/8");
+  if (order == "block") {
+    shard.order = ShardSpec::Order::block;
+  } else if (order == "round-robin") {
+    shard.order = ShardSpec::Order::round_robin;
+  } else {
+    throw InputError(SourceLocation{"--shard-order", 0, 0}, "", order, "expected block or round-robin");
+  }
+  return shard;
+}
+
+std::string to_string(ShardSpec::Order order) { return order == ShardSpec::Order::block ? "block" : "round-robin"; }
+
+PointRange shard_points(const ShardSpec& shard, std::size_t total) {
+  if (!shard.active()) return PointRange{0, total, 1};
+  const std::size_t k = shard.index - 1, n = shard.count;
+  if (shard.order == ShardSpec::Order::block) {
+    const std::size_t first = k * total / n, end = (k + 1) * total / n;
+    return PointRange{first, end - first, 1};
+  }
+  return PointRange{k, total > k ? (total - k + n - 1) / n : 0, n};
+}
+
+std::string job_fingerprint(const std::string& description) {
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a, 64 bit
+  for (unsigned char c : description) hash = (hash ^ c) * 1099511628211ull;
+  return fmt::format("{:016x}", hash);
+}
+
+// --- merge -------------------------------------------------------------------------------------------------
+
+namespace {
+
+struct ShardReader {
+  std::string path;
+  std::ifstream in;
+  ShardSpec shard;
+  std::map<std::string, std::string> fields;  // order, kind, points, format, job, types
+  std::vector<std::string> columns;           // without "point"
+  PointRange points;
+  std::size_t next_index = 0;  // position in `points` of the next point expected
+  std::size_t rows = 0;
+  bool has_row = false;
+  std::size_t row_point = 0;
+  std::vector<std::string> row;
+  int exit_code = 0;
+  bool ended = false;
+
+  InputError fail(const std::string& problem) const { return InputError(SourceLocation{path, 0, 0}, "merge", "", problem); }
+
+  void open() {
+    in.open(path);
+    if (!in) throw fail("cannot be read (missing file or no permission)");
+    std::string header;
+    if (!std::getline(in, header) || header.rfind(shard_magic, 0) != 0)
+      throw fail("not a shard file (it does not start with \"# radchain shard\"; write shards with --shard k/n)");
+    std::istringstream tokens(header.substr(std::string(shard_magic).size()));
+    std::string token;
+    tokens >> token;
+    shard = parse_shard(token, "block");
+    while (tokens >> token) {
+      const auto eq = token.find('=');
+      if (eq != std::string::npos) fields[token.substr(0, eq)] = token.substr(eq + 1);
+    }
+    for (const char* key : {"order", "kind", "points", "format", "job", "types"})
+      if (!fields.count(key)) throw fail(fmt::format("shard header has no {}=", key));
+    shard.order = fields["order"] == "round-robin" ? ShardSpec::Order::round_robin : ShardSpec::Order::block;
+    std::size_t total = 0;
+    try {
+      total = parse_count(fields["points"]);
+    } catch (const std::invalid_argument&) {
+      throw fail("shard header: points=" + fields["points"] + " is not a count");
+    }
+    points = shard_points(shard, total);
+    std::string line;
+    if (!std::getline(in, line) || !parse_csv_record(in, line, columns) || columns.empty() || columns.front() != "point")
+      throw fail("no column line after the shard header");
+    columns.erase(columns.begin());
+    if (columns.size() != fields["types"].size()) throw fail("the column line does not match types=");
+    advance();
+  }
+
+  void advance() {
+    has_row = false;
+    std::string line;
+    if (!std::getline(in, line)) throw fail("incomplete: no \"# end\" line (was the job interrupted?)");
+    if (line.rfind(trailer_magic, 0) == 0) {
+      std::istringstream tokens(line.substr(std::string(trailer_magic).size()));
+      std::string token;
+      std::size_t recorded_rows = 0;
+      while (tokens >> token) {
+        try {
+          if (token.rfind("rows=", 0) == 0) recorded_rows = parse_count(token.substr(5));
+          if (token.rfind("exit=", 0) == 0) exit_code = static_cast<int>(parse_count(token.substr(5)));
+        } catch (const std::invalid_argument&) {
+          throw fail("bad \"# end\" line: " + line);
+        }
+      }
+      if (recorded_rows != rows) throw fail(fmt::format("holds {} rows but its end line says {}", rows, recorded_rows));
+      if (next_index != points.count)
+        throw fail(fmt::format("incomplete: point {} of this shard has no row", points[next_index]));
+      ended = true;
+      return;
+    }
+    if (!parse_csv_record(in, line, row) || row.size() != columns.size() + 1)
+      throw fail(fmt::format("row {}: expected {} cells", rows + 1, columns.size() + 1));
+    try {
+      row_point = parse_count(row.front());
+    } catch (const std::invalid_argument&) {
+      throw fail(fmt::format("row {}: point \"{}\" is not a count", rows + 1, row.front()));
+    }
+    row.erase(row.begin());
+    // Rows come in point order: the current point again, or the next point of this shard.
+    const bool same = next_index > 0 && row_point == points[next_index - 1];
+    if (!same) {
+      if (next_index >= points.count || row_point != points[next_index])
+        throw fail(fmt::format("row {}: point {} is not the next point of shard {}/{} ({})", rows + 1, row_point,
+                               shard.index, shard.count,
+                               next_index < points.count ? std::to_string(points[next_index]) : "none left"));
+      ++next_index;
+    }
+    ++rows;
+    has_row = true;
+  }
+};
+
+}  // namespace
+
+int merge_shards(const std::vector<std::string>& files, std::ostream& out, std::optional<TableFormat> format) {
+  if (files.empty()) throw InputError(SourceLocation{"merge", 0, 0}, "", "", "no shard files given");
+  auto open_all = [&] {
+    std::vector<std::unique_ptr<ShardReader>> readers;
+    for (const auto& file : files) {
+      auto reader = std::make_unique<ShardReader>();
+      reader->path = file;
+      reader->open();
+      readers.push_back(std::move(reader));
+    }
+    return readers;
+  };
+  // First pass: every file complete and in order, before a byte is written (a failed merge writes nothing).
+  for (auto& r : open_all())
+    while (!r->ended) r->advance();
+  std::vector<std::unique_ptr<ShardReader>> readers = open_all();
+  const ShardReader& first = *readers.front();
+  const std::size_t count = first.shard.count;
+  std::vector<const ShardReader*> by_index(count + 1, nullptr);
+  for (const auto& r : readers) {
+    for (const char* key : {"order", "kind", "points", "format", "job", "types"})
+      if (r->fields.at(key) != first.fields.at(key))
+        throw r->fail(fmt::format("belongs to another job than {} ({}={} there, {} here)", first.path, key,
+                                  first.fields.at(key), r->fields.at(key)));
+    if (r->shard.count != count || r->columns != first.columns)
+      throw r->fail(fmt::format("belongs to another job than {} (shards of {} there, {} here)", first.path, count,
+                                r->shard.count));
+    if (by_index[r->shard.index])
+      throw r->fail(fmt::format("shard {}/{} is given twice (also {})", r->shard.index, count, by_index[r->shard.index]->path));
+    by_index[r->shard.index] = r.get();
+  }
+  for (std::size_t k = 1; k <= count; ++k)
+    if (!by_index[k])
+      throw InputError(SourceLocation{"merge", 0, 0}, "", "",
+                       fmt::format("shard {}/{} is missing (given: {})", k, count, join(files)));
+
+  TableLayout layout;
+  layout.kind = first.fields.at("kind");
+  layout.columns = first.columns;
+  for (char t : first.fields.at("types")) layout.numeric.push_back(t == 'n');
+  const TableFormat job_format = parse_table_format(first.fields.at("format"));
+  TableWriter writer(out, format.value_or(job_format), layout, parse_count(first.fields.at("points")));
+
+  // A k-way merge on the point index: every point lives in exactly one shard, and each shard is in point order.
+  int exit_code = 0;
+  while (true) {
+    ShardReader* next = nullptr;
+    for (auto& r : readers)
+      if (r->has_row && (!next || r->row_point < next->row_point)) next = r.get();
+    if (!next) break;
+    const std::size_t point = next->row_point;
+    while (next->has_row && next->row_point == point) {
+      writer.row(point, next->row);
+      next->advance();
+    }
+  }
+  for (auto& r : readers) {
+    if (!r->ended) throw r->fail("rows after the end of the merge");
+    exit_code = std::max(exit_code, r->exit_code);
+  }
+  writer.finish(exit_code);
+  return exit_code;
+}
+
+}  // namespace radchain

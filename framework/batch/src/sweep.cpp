@@ -1,0 +1,386 @@
+// `radchain sweep`: a grid of parameter values, the chain's solves re-run at each point, on all cores.
+#include "radchain/batch/shard.hpp"
+#include "radchain/batch/table.hpp"
+#include "radchain/batch/thread_pool.hpp"
+#include "radchain/batch/sweep.hpp"
+
+#include "radchain/batch/catalogue.hpp"  // preload_plugins
+#include "radchain/error.hpp"
+#include "radchain/units.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+namespace radchain {
+namespace {
+
+std::string trimmed(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string::npos) return {};
+  return s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1)
+    parts.push_back(text.substr(start, at - start));
+  parts.push_back(text.substr(start));
+  return parts;
+}
+
+bool is_numeric(ParamType type) {
+  return type == ParamType::quantity || type == ParamType::number || type == ParamType::integer;
+}
+
+std::string unquoted(std::string example) {
+  if (example.size() >= 2 && example.front() == '"' && example.back() == '"') example = example.substr(1, example.size() - 2);
+  return example;
+}
+
+std::string column_name(const std::string& name, const std::string& unit) {
+  if (unit.empty() || unit == "1") return name;
+  std::string suffix = unit;
+  std::replace(suffix.begin(), suffix.end(), ' ', '_');
+  return name + "_" + suffix;
+}
+
+}  // namespace
+
+double SweepAxis::value(std::size_t i) const {
+  if (steps <= 1 || i == 0) return from;
+  if (i + 1 >= steps) return to;
+  // (to - from) i first: "15 cm:30 cm:16" gives 20 exactly, as --set optics.aperture="20 cm" does.
+  return from + (to - from) * static_cast<double>(i) / static_cast<double>(steps - 1);
+}
+
+bool is_sweep_range(const std::string& value) { return value.find(':') != std::string::npos; }
+
+SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::string& range) {
+  const SourceLocation where{"--set " + key, 0, 0};
+  auto fail = [&](const std::string& problem) { return InputError(where, "", range, problem); };
+  const auto dot = key.rfind('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 == key.size())
+    throw fail("expected <section>.<key>=from:to:steps, e.g. optics.aperture=\"15 cm:30 cm:16\"");
+  const std::string section = key.substr(0, dot), name = key.substr(dot + 1);
+
+  const StageSlot* slot = nullptr;
+  std::vector<std::string> sections;
+  for (const auto& s : chain.stages) {
+    sections.push_back(s.section);
+    if (s.section == section) slot = &s;
+  }
+  if (!slot) {
+    const std::string near = nearest_match(section, sections);
+    throw fail(fmt::format("the sensor file has no section \"{}\"{}; sections: {}", section,
+                           near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(sections)));
+  }
+  const Params::Entry* entry = nullptr;
+  std::vector<std::string> numeric_keys;
+  for (const auto& e : slot->params->entries()) {
+    if (is_numeric(e.spec->type)) numeric_keys.push_back(e.spec->key);
+    if (e.spec->key == name) entry = &e;
+  }
+  if (entry && !is_numeric(entry->spec->type))
+    throw fail(fmt::format("{} is not a number ({}): only numeric parameters can be swept", key,
+                           entry->spec->expected_text().substr(std::string("expected ").size())));
+  if (!entry) {
+    const std::string near = nearest_match(name, numeric_keys);
+    throw fail(fmt::format("{} has no numeric parameter \"{}\"{}; its numeric parameters: {}", slot->params->context(),
+                           name, near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+                           numeric_keys.empty() ? "none" : join(numeric_keys)));
+  }
+  for (const auto& s : chain.solves)
+    if (s.unknown == key)
+      throw fail("a [[solve]] determines " + key + " at every point: sweep another parameter (or remove the solve)");
+  const ParamSpec& spec = *entry->spec;
+  std::string example = fmt::format("{}=\"{}:{}:16\"", key, unquoted(spec.example), unquoted(spec.example));
+  try {
+    const units::ParsedQuantity q = units::split_quantity(unquoted(spec.example));
+    const std::string u = q.unit.empty() ? "" : " " + q.unit;
+    example = fmt::format("{}=\"{:g}{}:{:g}{}:16\"", key, q.number, u, 2 * q.number, u);
+  } catch (const std::invalid_argument&) {
+  }
+
+  const std::vector<std::string> parts = split(range, ':');
+  if (parts.size() != 3) throw fail("expected from:to:steps, e.g. " + example);
+  SweepAxis axis;
+  axis.key = key;
+  axis.range = range;
+  const std::string steps_text = trimmed(parts[2]);
+  char* end = nullptr;
+  const long long steps = std::strtoll(steps_text.c_str(), &end, 10);
+  if (steps_text.empty() || *end != '\0' || steps < 1)
+    throw fail(fmt::format("steps \"{}\" must be a whole number >= 1, e.g. {}", steps_text, example));
+  axis.steps = static_cast<std::size_t>(steps);
+
+  const bool dimensionless = spec.type != ParamType::quantity || units::dimension_of(spec.si_unit) == "1";
+  const std::string expected = dimensionless ? std::string("a plain number")
+                                             : fmt::format("{}, e.g. {}", units::dimension_name(spec.si_unit), example);
+  double ends[2] = {0, 0};
+  std::string ends_unit[2];
+  for (int i = 0; i < 2; ++i) {
+    const std::string text = trimmed(parts[static_cast<std::size_t>(i)]);
+    units::ParsedQuantity q;
+    try {
+      q = units::split_quantity(text);
+    } catch (const std::invalid_argument&) {
+      throw fail(fmt::format("\"{}\" does not start with a number: expected {}", text, expected));
+    }
+    if (q.unit.empty() && !dimensionless)
+      throw fail(fmt::format("\"{}\" has no unit: expected {}", text, expected));
+    ends[i] = q.number;
+    ends_unit[i] = q.unit;
+  }
+  axis.unit = ends_unit[0].empty() ? ends_unit[1] : ends_unit[0];
+  try {
+    const std::string si = spec.type == ParamType::quantity ? spec.si_unit : std::string("1");
+    axis.to_si = units::conversion(axis.unit.empty() ? "1" : axis.unit, si).factor;
+    // `to` in the unit of `from`, so that the steps are even in the unit written first.
+    const double to_factor = units::conversion(ends_unit[1].empty() ? "1" : ends_unit[1], si).factor;
+    axis.from = ends[0];
+    axis.to = ends[1] * to_factor / axis.to_si;
+  } catch (const std::invalid_argument&) {
+    throw fail(fmt::format("unknown unit: expected {}", expected));
+  } catch (const std::domain_error&) {
+    throw fail("wrong unit: expected " + expected);
+  }
+  for (std::size_t i = 0; i < axis.steps; ++i) {
+    const double v = axis.value_si(i);
+    if (!spec.in_range(v))
+      throw fail(fmt::format("{:g}{} is out of range: accepted {}", axis.value(i), axis.unit.empty() ? "" : " " + axis.unit,
+                             spec.range_text()));
+    if (spec.type == ParamType::integer && v != std::round(v))
+      throw fail(fmt::format("{} is an integer, but the range gives {:g}: choose steps that land on whole numbers", key, v));
+  }
+  return axis;
+}
+
+// --- Sweep -------------------------------------------------------------------------------------------------
+
+Sweep::Sweep(SweepOptions options) : options_(std::move(options)) {
+  Chain chain = load_sensor(options_.sensor_file, options_.overrides);
+  for (const auto& [key, range] : options_.axes) {
+    for (const auto& a : axes_)
+      if (a.key == key)
+        throw InputError(SourceLocation{"--set " + key, 0, 0}, "", range, "the parameter is swept twice (one range per key)");
+    axes_.push_back(parse_sweep_axis(chain, key, range));
+  }
+  const Results& results = chain.results();
+  std::vector<std::string> all;
+  for (std::size_t i = 0; i < results.size(); ++i) all.push_back(results.info(i).name);
+  results_ = options_.results.empty() ? all : options_.results;
+  for (const auto& name : results_) {
+    const auto id = results.find(name);
+    if (!id) {
+      const std::string near = nearest_match(name, all);
+      throw InputError(SourceLocation{"--results", 0, 0}, "", name,
+                       fmt::format("no such result{}; `radchain run {}` lists them",
+                                   near.empty() ? "" : " (did you mean \"" + near + "\"?)", options_.sensor_file));
+    }
+    units_.push_back(results.info(*id).display_unit);
+  }
+  constexpr double max_points = 1e10;
+  double points = 1;
+  for (const auto& a : axes_) points *= static_cast<double>(a.steps);
+  if (points > max_points)
+    throw InputError(SourceLocation{"sweep", 0, 0}, "", "",
+                     fmt::format("the grid has {:g} points: more than {:g} (split it, or use fewer steps)", points, max_points));
+  points_ = static_cast<std::size_t>(points);
+}
+
+TableLayout Sweep::layout() const {
+  TableLayout layout;
+  layout.kind = "sweep";
+  for (const auto& a : axes_) layout.columns.push_back(column_name(a.key, a.unit));
+  for (std::size_t i = 0; i < results_.size(); ++i) layout.columns.push_back(column_name(results_[i], units_[i]));
+  layout.numeric.assign(layout.columns.size(), true);
+  return layout;
+}
+
+std::string Sweep::job() const {
+  std::string job = "sweep\nfile " + options_.sensor_file + "\n";
+  for (const auto& o : options_.overrides) job += "set " + o.key + "=" + o.value + "\n";
+  for (const auto& [key, range] : options_.axes) job += "axis " + key + "=" + range + "\n";
+  for (const auto& r : results_) job += "result " + r + "\n";
+  return job;
+}
+
+std::vector<std::size_t> Sweep::indices(std::size_t point) const {
+  std::vector<std::size_t> index(axes_.size());
+  for (std::size_t a = axes_.size(); a-- > 0;) {
+    index[a] = point % axes_[a].steps;
+    point /= axes_[a].steps;
+  }
+  return index;
+}
+
+int Sweep::run(TableWriter& writer, std::string* failure,
+               const std::function<void(std::size_t, const double*)>& observer) {
+  const PointRange range = shard_points(options_.shard, points_);
+  const std::size_t n_columns = columns();
+  preload_plugins();
+  std::vector<std::unique_ptr<SweepWorker>> workers(worker_slots());
+  std::mutex failure_mutex;
+  std::size_t first_failed = std::numeric_limits<std::size_t>::max();
+  std::string first_message;
+
+  // Blocks bound the memory (values and formatted cells) of long sweeps; inside a block the points run in
+  // parallel and are written in order afterwards.
+  constexpr std::size_t block = 16384;
+  std::vector<double> values;
+  std::vector<char> ok;
+  std::vector<std::vector<std::string>> cells;
+  for (std::size_t base = 0; base < range.count; base += block) {
+    const std::size_t count = std::min(block, range.count - base);
+    values.assign(count * n_columns, 0.0);
+    ok.assign(count, 1);
+    cells.assign(count, {});
+    parallel_chunks(count, 64, [&](std::size_t slot, std::size_t begin, std::size_t end) {
+      auto& worker = workers[slot];
+      if (!worker) worker = std::make_unique<SweepWorker>(*this);
+      std::size_t group[lane_count];
+      for (std::size_t i = begin; i < end; i += lane_count) {
+        const std::size_t count = std::min<std::size_t>(lane_count, end - i);
+        for (std::size_t k = 0; k < count; ++k) group[k] = range[base + i + k];
+        worker->evaluate_group(group, count, &values[i * n_columns], &ok[i]);
+        for (std::size_t k = 0; k < count; ++k) {
+          if (!ok[i + k]) {
+            std::lock_guard lock(failure_mutex);
+            if (group[k] < first_failed) first_failed = group[k], first_message = worker->failure_of(k);
+          }
+          std::vector<std::string>& row = cells[i + k];
+          row.reserve(n_columns);
+          for (std::size_t c = 0; c < n_columns; ++c) row.push_back(number_cell(values[(i + k) * n_columns + c]));
+        }
+      }
+      if (options_.progress) options_.progress->fetch_add(end - begin, std::memory_order_relaxed);
+    });
+    for (std::size_t i = 0; i < count; ++i) {
+      if (observer) observer(range[base + i], &values[i * n_columns]);
+      writer.row(range[base + i], cells[i]);
+    }
+  }
+  if (first_failed == std::numeric_limits<std::size_t>::max()) return 0;
+  if (failure) *failure = first_message;
+  return 1;
+}
+
+// --- SweepWorker -------------------------------------------------------------------------------------------
+
+// "at optics.aperture = 20 cm: the solve for target.magnitude failed: <why>" (axis values as written in the row).
+static std::string solve_failure(const std::vector<SweepAxis>& axes, const double* row, const std::string& unknown,
+                                 const std::string& why) {
+  std::string at;
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    at += fmt::format("{}{} = {:g}{}", a ? ", " : "", axes[a].key, row[a], axes[a].unit.empty() ? "" : " " + axes[a].unit);
+  return fmt::format("at {}: the solve for {} failed: {}", at, unknown, why);
+}
+
+SweepWorker::SweepWorker(const Sweep& sweep)
+    : sweep_(sweep), chain_(load_sensor(sweep.options().sensor_file, sweep.options().overrides)) {
+  for (const auto& a : sweep.axes()) axes_.push_back(chain_.parameter(a.key));
+  for (const auto& s : chain_.solves) {
+    const ParameterRef p = chain_.parameter(s.unknown);
+    unknowns_.emplace_back(p, p.value());
+  }
+  for (const auto& name : sweep.results()) {
+    const ResultId id = *chain_.results().find(name);
+    bool solved = false;
+    for (const auto& s : chain_.solves) solved = solved || s.unknown == name;
+    columns_.push_back(Column{id, chain_.results().info(id).display_factor, solved});
+  }
+  index_.resize(axes_.size());
+  lanes_ = chain_.solves.size() <= 1 && (chain_.solves.empty() || chain_.lanes_can_solve());
+  for (const ParameterRef& a : axes_) lanes_ = lanes_ && !a.spectral();
+}
+
+void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, double* out, char* ok) {
+  const std::size_t n_columns = sweep_.columns();
+  if (!lanes_) {
+    for (std::size_t k = 0; k < count; ++k) {
+      ok[k] = evaluate(points[k], out + k * n_columns) ? 1 : 0;
+      failures_[k] = failure_;
+    }
+    return;
+  }
+  const auto& axes = sweep_.axes();
+  // Each axis's value per lane; a short group repeats its last point in the unused lanes.
+  std::vector<Lanes> values(axes.size());
+  for (int lane = 0; lane < lane_count; ++lane) {
+    const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(lane), count - 1);
+    std::size_t point = points[k];
+    for (std::size_t a = axes.size(); a-- > 0;) {
+      index_[a] = point % axes[a].steps;
+      point /= axes[a].steps;
+    }
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      values[a](lane) = axes[a].value_si(index_[a]);
+      if (static_cast<std::size_t>(lane) < count) out[k * n_columns + a] = axes[a].value(index_[a]);
+    }
+  }
+  chain_.clear_lanes();
+  for (std::size_t a = 0; a < axes.size(); ++a) chain_.set_lanes(axes_[a], values[a]);
+  std::fill(ok, ok + count, 1);
+  if (chain_.solves.empty()) {
+    chain_.evaluate_lanes(Detail::full);
+  } else {
+    chain_.solve_lanes(lane_outcome_);
+    for (std::size_t k = 0; k < count; ++k) {
+      failures_[k].clear();
+      if (lane_outcome_.converged[k]) continue;
+      ok[k] = 0;
+      failures_[k] = solve_failure(axes, out + k * n_columns, chain_.solves[0].unknown, lane_outcome_.message[k]);
+    }
+  }
+  const std::size_t offset = axes.size();
+  for (std::size_t k = 0; k < count; ++k)
+    for (std::size_t c = 0; c < columns_.size(); ++c) {
+      const Column& column = columns_[c];
+      out[k * n_columns + offset + c] = (column.solved && !ok[k]) ? std::numeric_limits<double>::quiet_NaN()
+                                                                  : chain_.lane_result(column.id)(static_cast<int>(k)) * column.factor;
+    }
+}
+
+bool SweepWorker::evaluate(std::size_t point, double* out) {
+  const auto& axes = sweep_.axes();
+  for (std::size_t a = axes.size(); a-- > 0;) {
+    index_[a] = point % axes[a].steps;
+    point /= axes[a].steps;
+  }
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const double v_si = axes[a].value_si(index_[a]);
+    out[a] = axes[a].value(index_[a]);
+    if (axes_[a].value() != v_si) chain_.set(axes_[a], v_si);
+  }
+  // Every point starts from the file's values of the solved unknowns (the result must not depend on the
+  // points this thread ran before). Only what moves is marked for re-evaluation.
+  for (const auto& [parameter, initial] : unknowns_)
+    if (parameter.value() != initial) chain_.set(parameter, initial);
+  bool converged = true;
+  if (chain_.solves.empty()) {
+    chain_.evaluate();
+  } else {
+    chain_.solve_all(outcomes_);
+    for (const auto& o : outcomes_) {
+      if (o.converged) continue;
+      if (converged) {
+        failure_ = solve_failure(axes, out, o.spec.unknown, o.message);
+      }
+      converged = false;
+    }
+  }
+  const std::size_t offset = axes.size();
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    const Column& column = columns_[c];
+    out[offset + c] = (column.solved && !converged) ? std::numeric_limits<double>::quiet_NaN()
+                                                    : chain_.results().value(column.id) * column.factor;
+  }
+  return converged;
+}
+
+}  // namespace radchain

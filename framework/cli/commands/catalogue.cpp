@@ -1,0 +1,40 @@
+// `radchain catalogue`: many sensor files, key results against their [expected] references.
+#include "../common.hpp"
+#include "../progress.hpp"
+#include "radchain/chain.hpp"
+#include "radchain/error.hpp"
+#include "radchain/batch/catalogue.hpp"
+#include "radchain/batch/thread_pool.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+
+namespace radchain::cli {
+
+int catalogue(const CatalogueCommand& command) {
+  CatalogueOptions options;
+  options.overrides = parse_overrides(command.sets);
+  options.extra_results = command.results;
+  options.shard = shard_of(command.batch);
+  const TableFormat format = format_of(command.output, TableFormat::text);
+  const std::vector<std::string> files = catalogue_files(command.inputs);
+  limit_threads(command.batch.threads);
+
+  Progress progress("catalogue");
+  options.progress = progress.counter();
+  Sink sink(command.output.out);
+  TableWriter writer(sink.stream(), format, catalogue_layout(), files.size(), options.shard,
+                     catalogue_job(files, options));
+  progress.start(shard_points(options.shard, files.size()).count);
+  std::vector<std::string> errors;
+  const int code = run_catalogue(files, options, writer, &errors);
+  progress.stop();
+  writer.finish(code);
+  for (const auto& e : errors) std::cerr << e << "\n";
+  return code;
+}
+
+}  // namespace radchain::cli

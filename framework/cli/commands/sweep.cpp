@@ -1,0 +1,92 @@
+// `radchain sweep`: a grid of parameter values, solves at every point; optionally a plot of a 1-D sweep.
+#include "../common.hpp"
+#include "../plot.hpp"
+#include "../progress.hpp"
+#include "radchain/chain.hpp"
+#include "radchain/error.hpp"
+#include "radchain/batch/sweep.hpp"
+#include "radchain/batch/thread_pool.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+
+namespace radchain::cli {
+
+int sweep(const SweepCommand& command) {
+  SweepOptions options;
+  options.sensor_file = command.sensor;
+  for (const auto& s : command.sets) {
+    Override o = parse_override(s);
+    if (is_sweep_range(unquoted(o.value)))
+      options.axes.emplace_back(o.key, unquoted(o.value));
+    else
+      options.overrides.push_back(o);
+  }
+  if (options.axes.empty())
+    throw InputError(SourceLocation{"sweep", 0, 0}, "", "",
+                     "no axis: give at least one --set <section>.<key>=from:to:steps, e.g. --set optics.aperture=\"15 cm:30 cm:16\"");
+  options.results = command.results;
+  options.shard = shard_of(command.batch);
+  const TableFormat format = format_of(command.output, TableFormat::csv);
+  if (!command.plot.empty() && options.axes.size() != 1)
+    throw InputError(SourceLocation{"--plot", 0, 0}, "", command.plot,
+                     fmt::format("plots are drawn for 1-D sweeps; this sweep has {} axes (plot the CSV instead)", options.axes.size()));
+  if (!command.plot.empty() && options.shard.active())
+    throw InputError(SourceLocation{"--plot", 0, 0}, "", command.plot, "a shard has part of the sweep: plot the merged output");
+  limit_threads(command.batch.threads);
+
+  Progress progress("sweep");
+  options.progress = progress.counter();
+  Sweep sweep(options);
+
+  // The plotted series: --results, else the solved unknowns, else the SNR, else the first result.
+  std::vector<std::size_t> plotted;
+  if (!command.plot.empty()) {
+    const auto& names = sweep.results();
+    auto index_of = [&](const std::string& name) {
+      return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+    };
+    if (!command.results.empty()) {
+      for (std::size_t i = 0; i < names.size(); ++i) plotted.push_back(i);
+    } else {
+      Chain chain = load_sensor(options.sensor_file, options.overrides);
+      for (const auto& s : chain.solves)
+        if (index_of(s.unknown) < names.size()) plotted.push_back(index_of(s.unknown));
+      if (plotted.empty() && index_of("detector.snr") < names.size()) plotted.push_back(index_of("detector.snr"));
+      if (plotted.empty() && !names.empty()) plotted.push_back(0);
+    }
+  }
+  std::vector<double> x;
+  std::vector<PlotSeries> series;
+  for (std::size_t i : plotted) series.push_back(PlotSeries{sweep.results()[i], sweep.result_units()[i], {}});
+  auto observer = [&](std::size_t, const double* values) {
+    x.push_back(values[0]);
+    for (std::size_t s = 0; s < plotted.size(); ++s) series[s].y.push_back(values[sweep.axes().size() + plotted[s]]);
+  };
+
+  Sink sink(command.output.out);
+  TableWriter writer(sink.stream(), format, sweep.layout(), sweep.points(), options.shard, sweep.job());
+  progress.start(shard_points(options.shard, sweep.points()).count);
+  std::string failure;
+  const int code = sweep.run(writer, &failure, plotted.empty() ? std::function<void(std::size_t, const double*)>() : observer);
+  progress.stop();
+  writer.finish(code);
+  if (code != 0) std::cerr << "radchain sweep: " << failure << "\n";
+  if (!command.plot.empty()) {
+    const SweepAxis& axis = sweep.axes().front();
+    const std::string x_label = axis.unit.empty() ? axis.key : axis.key + " [" + axis.unit + "]";
+    try {
+      Chain chain = load_sensor(options.sensor_file, options.overrides);
+      plot_sweep(command.plot, chain.sensor_name + " — " + options.sensor_file, x_label, x, series);
+    } catch (const std::runtime_error& error) {
+      if (dynamic_cast<const InputError*>(&error)) throw;
+      throw InputError(SourceLocation{"--plot", 0, 0}, "", command.plot, error.what());
+    }
+  }
+  return code;
+}
+
+}  // namespace radchain::cli

@@ -1,0 +1,119 @@
+#pragma once
+// An Earth scene seen by a pushbroom sensor (a ccd_line chain, Kolobrodov 1996): a ground reflectance map in,
+// the simulated image out.
+//
+//   1. reflectance ρ(x, y) on the input grid (input_sampling_m per pixel on the ground, nadir view);
+//   2. the system OTF applied in the Fourier domain (FFTW, the map mirror-padded):
+//        optics:   the diffraction OTF of the annular pupil at the design f-number N and wavelength λ
+//                  (Goodman 2005 ch. 6; criteria.<mtf_match>.wavelength by default), or Kolobrodov's eq. (7)
+//                  line with the design quality η (criteria.<mtf_match>.required_quality), or none;
+//        detector: sinc(V_D ν_x) · sinc(V_D ν_y), the square element of eq. (8) (signed: contrast reversal
+//                  beyond 1/V_D is kept);
+//      ground frequency ν_g ↔ focal-plane frequency ν = ν_g h / f' (platform.altitude, optics.focal_length);
+//   3. point samples of the filtered field every output_sampling_m (default the designed ground element
+//      criteria.resolution.ground_element = V_s h / f'; the element's own footprint is pitch·h/f'): an integer
+//      ratio of the two samplings takes every r-th input pixel, exactly; otherwise Keys' cubic interpolation;
+//   4. exposure H = ρ · K · t_i with K = detector.signal_irradiance / target.reflectance_difference, the
+//      image-plane irradiance per unit reflectance (the chain is linear in ρ; no atmosphere plugin publishes a
+//      path radiance, so there is no offset);
+//   5. noise: H + H_nr · Z, Z ~ N(0, 1), with H_nr = detector.nee_working the noise-equivalent exposure, so a
+//      step Δρ has SNR = K Δρ t_i / H_nr = detector.snr (the report's, eq. 20-21);
+//   6. saturation at H_m (detector.saturation_exposure × k_i/k_c for the working source) and an ADC of
+//      adc_bits over [0, H_m]: DN = clamp(floor(H / q + ½) + offset, 0, 2^bits − 1), q = H_m / 2^bits.
+// Without the ADC the image is the exposure in J m-2 (float).
+#include "radchain/chain.hpp"
+#include "radchain/imaging/image.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace radchain::render {
+
+enum class OpticsMtf {
+  diffraction,     // exact diffraction OTF of the (annular) pupil
+  kolobrodov_eq7,  // Kolobrodov 1996 eq. (7): 1 − 1.218 N λ ν / η, clamped at 0
+  none,
+};
+std::string to_string(OpticsMtf model);
+std::optional<OpticsMtf> optics_mtf_from_string(const std::string& name);  // "diffraction", "eq7", "none"
+
+struct EarthSceneOptions {
+  double input_sampling_m = 0;              // required: ground size of one input pixel
+  std::optional<double> output_sampling_m;  // default criteria.resolution.ground_element
+  OpticsMtf optics = OpticsMtf::diffraction;
+  std::optional<double> wavelength_m;  // default the mtf_match criterion's wavelength, else the band centre
+  bool detector_mtf = true;
+  int adc_bits = 12;
+  std::optional<double> saturation_exposure_J_m2;  // working source; default from the detector
+  double offset_dn = 0.0;
+  bool noise = true;
+  bool saturation = true;
+  bool quantisation = true;
+};
+
+struct EarthSceneSetup {
+  std::string sensor_name, sensor_file;
+  double altitude_m = 0, focal_length_m = 0, aperture_m = 0, f_number = 0, obscuration = 0;
+  double wavelength_m = 0, element_m = 0, pitch_m = 0, eta = 1;
+  OpticsMtf optics = OpticsMtf::diffraction;
+  bool detector_mtf = true;
+  double input_sampling_m = 0, output_sampling_m = 0;
+  double irradiance_per_reflectance_W_m2 = 0;  // K
+  double integration_time_s = 0, nee_J_m2 = 0, saturation_J_m2 = 0;
+  int adc_bits = 12;
+  double offset_dn = 0;
+  bool noise = true, saturation = true, quantisation = true;
+  // the chain's answer
+  double reflectance_difference = 0, background_reflectance = 0, snr = 0;
+  double ground_element_m = 0;  // criteria.resolution.ground_element
+
+  double exposure_per_reflectance() const { return irradiance_per_reflectance_W_m2 * integration_time_s; }
+  double exposure_per_dn() const;  // q = H_m / 2^bits
+  double ground_to_focal() const { return focal_length_m / altitude_m; }  // focal-plane length per ground length
+};
+
+// Throws InputError when the chain is not a pushbroom design (names the missing result) or the options are bad.
+EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const EarthSceneOptions& options);
+
+// The model's system MTF at a ground frequency (cycles per ground metre, components along x and y): the
+// product in step 2 above, as a modulus.
+double system_mtf(const EarthSceneSetup& setup, double nu_x_per_m, double nu_y_per_m);
+
+// Output size for an input of `input_px` pixels: floor((input_px − 1) / r) + 1, r = output/input sampling.
+int earth_output_size(const EarthSceneSetup& setup, int input_px);
+
+// The simulated image of a reflectance map (DN, or exposure in J m-2 without the ADC). Same seed, same image.
+Image render_earth_scene(const EarthSceneSetup& setup, const Image& reflectance, std::uint64_t seed);
+// Steps 1-3 only: the filtered reflectance at the output samples (no radiometry, no noise).
+Image filtered_reflectance(const EarthSceneSetup& setup, const Image& reflectance);
+// "adu" with the ADC, else "J m-2".
+std::string earth_unit(const EarthSceneSetup& setup);
+Header earth_scene_header(const EarthSceneSetup& setup, std::uint64_t seed);
+
+// ---- The project's test scene --------------------------------------------------------------------------
+
+// Bar and edge targets on a uniform background, exact area coverage per pixel (so the map is the scene
+// averaged over each input pixel):
+//   top left: a slanted edge (angle from the vertical) between `background` and `bright`;
+//   top right: three-bar groups (bars of `bright` on `background`) with bar widths 0.5, 0.7, 1, 1.4, 2, 2.8 and
+//     4 × `bar_unit_m` (vertical and horizontal bars);
+//   bottom left: low-contrast squares, background + k·`contrast` (k = 1, 2, 4, 8);
+//   bottom right: a Siemens-star-like sector pattern of 16 sectors.
+struct TestSceneOptions {
+  int size_px = 1024;
+  double sampling_m = 1.25;   // ground size of one pixel
+  double bar_unit_m = 5.0;    // the designed ground element of the Kolobrodov camera
+  double background = 0.3;    // ρ_0
+  double bright = 0.6;
+  double contrast = 0.003;    // Δρ (Kolobrodov: 1 % of 0.3)
+  double edge_angle_deg = 5.0;
+};
+Image make_test_scene(const TestSceneOptions& options = {});
+// A straight edge through the image centre at `angle_deg` from the vertical: `left` on the left, `right` on
+// the right, each pixel the exact area fraction.
+Image make_edge_scene(int width_px, int height_px, double angle_deg, double left, double right);
+// A uniform map.
+Image make_flat_scene(int width_px, int height_px, double reflectance);
+
+}  // namespace radchain::render

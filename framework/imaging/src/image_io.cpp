@@ -1,0 +1,349 @@
+// Images and files through OpenImageIO 2.4 (what its FITS writer does with metadata: render_image.hpp).
+#include "radchain/imaging/image.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <stdexcept>
+
+namespace radchain::render {
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  const auto dot = path.rfind('.');
+  if (dot == std::string::npos) return {};
+  std::string ext = path.substr(dot + 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+std::string upper(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
+void check_key(const std::string& key) {
+  const bool ok = !key.empty() && key.size() <= 8 && std::all_of(key.begin(), key.end(), [](char c) {
+                    return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
+                  });
+  if (!ok) throw std::invalid_argument("FITS keyword \"" + key + "\": 1-8 characters of A-Z, 0-9, '-' or '_'");
+  static const std::set<std::string> reserved = {"SIMPLE", "BITPIX", "NAXIS", "NAXIS1", "NAXIS2", "END", "EXTEND", "BZERO", "BSCALE", "COMMENT", "HISTORY"};
+  if (reserved.count(key)) throw std::invalid_argument("FITS keyword \"" + key + "\" is written by the FITS writer itself");
+}
+
+// The shortest decimal that reads back as the same double, always with a '.' or an exponent (a FITS real).
+std::string real_text(double value) {
+  if (!std::isfinite(value)) throw std::invalid_argument("FITS cannot hold a non-finite number");
+  char buffer[64];
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof buffer, "%.*G", precision, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
+  std::string text = buffer;
+  if (text.find_first_of(".E") == std::string::npos) text += ".0";
+  return text;
+}
+
+OIIO::TypeDesc oiio_type(FitsPixel pixel) {
+  switch (pixel) {
+    case FitsPixel::int16: return OIIO::TypeDesc::INT16;
+    case FitsPixel::int32: return OIIO::TypeDesc::INT32;
+    case FitsPixel::float32: break;
+  }
+  return OIIO::TypeDesc::FLOAT;
+}
+
+template <class T>
+std::vector<T> integers(const Image& image) {
+  std::vector<T> out(image.size());
+  for (std::size_t i = 0; i < image.size(); ++i) {
+    const double v = std::nearbyint(static_cast<double>(image.pixels[i]));
+    if (!(v >= static_cast<double>(std::numeric_limits<T>::lowest()) && v <= static_cast<double>(std::numeric_limits<T>::max())))
+      throw std::invalid_argument("write_fits: a pixel value does not fit the chosen integer type");
+    out[i] = static_cast<T>(v);
+  }
+  return out;
+}
+
+// Percentile of a sample (nth_element on a copy).
+float percentile(std::vector<float> values, double percent) {
+  if (values.empty()) return 0.0f;
+  const double position = std::clamp(percent, 0.0, 100.0) / 100.0 * static_cast<double>(values.size() - 1);
+  const auto index = static_cast<std::size_t>(std::llround(position));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(index), values.end());
+  return values[index];
+}
+
+template <class T>
+double widened(const unsigned char* bytes) {
+  T value;
+  std::memcpy(&value, bytes, sizeof value);
+  return static_cast<double>(value);
+}
+
+[[noreturn]] void oiio_failure(const std::string& what, const std::string& path, const std::string& detail) {
+  throw std::runtime_error(what + " \"" + path + "\": " + (detail.empty() ? OIIO::geterror() : detail));
+}
+
+}  // namespace
+
+Image::Image(int width_px, int height_px, float fill)
+    : width(width_px), height(height_px),
+      pixels(static_cast<std::size_t>(std::max(0, width_px)) * static_cast<std::size_t>(std::max(0, height_px)), fill) {
+  if (width_px < 0 || height_px < 0) throw std::invalid_argument("Image: negative size");
+}
+
+const HeaderCard* find_card(const Header& header, const std::string& key) {
+  const std::string k = upper(key);
+  for (const auto& card : header)
+    if (upper(card.key) == k) return &card;
+  return nullptr;
+}
+
+std::optional<double> card_number(const Header& header, const std::string& key) {
+  const HeaderCard* card = find_card(header, key);
+  if (!card) return std::nullopt;
+  if (const auto* b = std::get_if<bool>(&card->value)) return *b ? 1.0 : 0.0;
+  if (const auto* i = std::get_if<std::int64_t>(&card->value)) return static_cast<double>(*i);
+  if (const auto* d = std::get_if<double>(&card->value)) return *d;
+  return std::nullopt;
+}
+
+std::string card_value_text(const HeaderCard& card) {
+  if (const auto* b = std::get_if<bool>(&card.value)) return *b ? "T" : "F";
+  if (const auto* i = std::get_if<std::int64_t>(&card.value)) return std::to_string(*i);
+  if (const auto* d = std::get_if<double>(&card.value)) return real_text(*d);
+  std::string text = std::get<std::string>(card.value);
+  std::string quoted = "'";
+  for (char c : text) {
+    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';  // FITS text is printable ASCII
+    const std::size_t width = c == '\'' ? 2 : 1;
+    if (quoted.size() + width > 69) break;  // 68 characters inside the quotes
+    quoted += c;
+    if (c == '\'') quoted += '\'';
+  }
+  return quoted + "'";
+}
+
+FitsPixel fits_pixel_for(const Image& image) {
+  bool integral = true, fits16 = true, fits32 = true;
+  for (float v : image.pixels) {
+    if (!(std::nearbyint(v) == v)) {
+      integral = false;
+      break;
+    }
+    fits16 = fits16 && v >= 0.0f && v <= 32767.0f;
+    fits32 = fits32 && v >= -2147483648.0f && v <= 2147483520.0f;
+  }
+  if (!integral) return FitsPixel::float32;
+  if (fits16) return FitsPixel::int16;
+  return fits32 ? FitsPixel::int32 : FitsPixel::float32;
+}
+
+void write_fits(const std::string& path, const Image& image, const Header& header, FitsPixel pixel) {
+  if (image.empty()) throw std::invalid_argument("write_fits: empty image");
+  OIIO::ImageSpec spec(image.width, image.height, 1, oiio_type(pixel));
+  std::set<std::string> seen;
+  for (const auto& card : header) {
+    check_key(card.key);
+    if (!seen.insert(card.key).second) throw std::invalid_argument("FITS keyword \"" + card.key + "\" appears twice");
+    std::string value = card_value_text(card);
+    // "KEY     = " takes 10 of the card's 80 characters; a comment follows " / " when it fits (cut otherwise).
+    if (!card.comment.empty() && value.size() + 3 < 70) value += " / " + card.comment.substr(0, 70 - value.size() - 3);
+    spec.attribute(card.key, value);
+  }
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) oiio_failure("cannot write", path, {});
+  if (out->format_name() != std::string("fits")) throw std::invalid_argument("write_fits: \"" + path + "\" is not a .fits path");
+  if (!out->open(path, spec)) oiio_failure("cannot write", path, out->geterror());
+  bool ok = false;
+  switch (pixel) {
+    case FitsPixel::int16: ok = out->write_image(OIIO::TypeDesc::INT16, integers<std::int16_t>(image).data()); break;
+    case FitsPixel::int32: ok = out->write_image(OIIO::TypeDesc::INT32, integers<std::int32_t>(image).data()); break;
+    case FitsPixel::float32: ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()); break;
+  }
+  if (!ok) oiio_failure("cannot write", path, out->geterror());
+  if (!out->close()) oiio_failure("cannot write", path, out->geterror());
+}
+
+void write_float_image(const std::string& path, const Image& image, const Header& header) {
+  if (image.empty()) throw std::invalid_argument("write_float_image: empty image");
+  OIIO::ImageSpec spec(image.width, image.height, 1, OIIO::TypeDesc::FLOAT);
+  for (const auto& card : header) spec.attribute("radchain:" + card.key, card_value_text(card));
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) oiio_failure("cannot write", path, {});
+  if (!out->open(path, spec)) oiio_failure("cannot write", path, out->geterror());
+  if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) oiio_failure("cannot write", path, out->geterror());
+  if (!out->close()) oiio_failure("cannot write", path, out->geterror());
+}
+
+ImageFile read_image(const std::string& path, PixelValues values) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) oiio_failure("cannot read", path, {});
+  const OIIO::ImageSpec& spec = in->spec();
+  ImageFile file;
+  file.format = in->format_name();
+  file.pixel_type = spec.format.c_str();
+  file.channels = spec.nchannels;
+  const int w = spec.width, h = spec.height, nc = spec.nchannels;
+  const std::size_t count = static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * static_cast<std::size_t>(nc);
+  std::vector<double> data(count);
+  const OIIO::TypeDesc stored = spec.format;
+  const bool integer = stored.basetype != OIIO::TypeDesc::FLOAT && stored.basetype != OIIO::TypeDesc::DOUBLE &&
+                       stored.basetype != OIIO::TypeDesc::HALF;
+  bool ok = false;
+  if (integer && values == PixelValues::as_stored) {
+    // OpenImageIO converts integer pixels to float as normalised values; read them as stored and widen here.
+    std::vector<unsigned char> raw(count * stored.size());
+    ok = in->read_image(0, 0, 0, nc, stored, raw.data());
+    for (std::size_t i = 0; ok && i < count; ++i) {
+      const unsigned char* p = raw.data() + i * stored.size();
+      switch (stored.basetype) {
+        case OIIO::TypeDesc::UINT8: data[i] = widened<std::uint8_t>(p); break;
+        case OIIO::TypeDesc::INT8: data[i] = widened<std::int8_t>(p); break;
+        case OIIO::TypeDesc::UINT16: data[i] = widened<std::uint16_t>(p); break;
+        case OIIO::TypeDesc::INT16: data[i] = widened<std::int16_t>(p); break;
+        case OIIO::TypeDesc::UINT32: data[i] = widened<std::uint32_t>(p); break;
+        case OIIO::TypeDesc::INT32: data[i] = widened<std::int32_t>(p); break;
+        default: throw std::runtime_error("cannot read \"" + path + "\": pixel type " + file.pixel_type + " is not supported");
+      }
+    }
+  } else {
+    ok = in->read_image(0, 0, 0, nc, OIIO::TypeDesc::DOUBLE, data.data());
+  }
+  if (!ok) oiio_failure("cannot read", path, in->geterror());
+  in->close();
+  // Grey: the mean of the colour channels (alpha left out).
+  file.image = Image(w, h);
+  int colour = 0;
+  for (int c = 0; c < nc; ++c) colour += c == spec.alpha_channel ? 0 : 1;
+  if (colour == 0) colour = 1;
+  for (std::size_t i = 0; i < file.image.size(); ++i) {
+    double sum = 0;
+    for (int c = 0; c < nc; ++c)
+      if (c != spec.alpha_channel || nc == 1) sum += data[i * static_cast<std::size_t>(nc) + static_cast<std::size_t>(c)];
+    file.image.pixels[i] = static_cast<float>(sum / colour);
+  }
+  for (const auto& attribute : spec.extra_attribs) {
+    HeaderCard card;
+    card.key = upper(attribute.name().string());
+    const OIIO::TypeDesc t = attribute.type();
+    if (t == OIIO::TypeDesc::INT) card.value = static_cast<std::int64_t>(attribute.get_int());
+    else if (t == OIIO::TypeDesc::FLOAT || t == OIIO::TypeDesc::DOUBLE) card.value = static_cast<double>(attribute.get_float());
+    else card.value = attribute.get_string();
+    file.header.push_back(std::move(card));
+  }
+  return file;
+}
+
+Image read_reflectance_map(const std::string& path) {
+  ImageFile file = read_image(path, PixelValues::normalised);
+  for (float v : file.image.pixels)
+    if (!(v >= 0.0f && v <= 1.0f))
+      throw std::invalid_argument("reflectance map \"" + path + "\": values must lie in [0, 1] (found " + std::to_string(v) + ")");
+  return std::move(file.image);
+}
+
+std::vector<RawCard> read_fits_header_cards(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read \"" + path + "\"");
+  std::vector<RawCard> cards;
+  std::string block(2880, ' ');
+  while (in.read(block.data(), 2880)) {
+    for (std::size_t c = 0; c < 36; ++c) {
+      const std::string card = block.substr(c * 80, 80);
+      RawCard raw;
+      raw.key = card.substr(0, 8);
+      raw.key.erase(raw.key.find_last_not_of(' ') + 1);
+      if (raw.key == "END") return cards;
+      if (card.compare(8, 2, "= ") == 0) {
+        std::string rest = card.substr(10);
+        std::size_t i = rest.find_first_not_of(' ');
+        if (i != std::string::npos && rest[i] == '\'') {
+          std::size_t j = i + 1;
+          while (j < rest.size()) {
+            if (rest[j] == '\'' && (j + 1 >= rest.size() || rest[j + 1] != '\'')) break;
+            j += rest[j] == '\'' ? 2 : 1;
+          }
+          raw.value = rest.substr(i, std::min(j + 1, rest.size()) - i);
+          rest = rest.substr(std::min(j + 1, rest.size()));
+          const auto slash = rest.find('/');
+          if (slash != std::string::npos) raw.comment = rest.substr(slash + 1);
+        } else {
+          const auto slash = rest.find('/');
+          raw.value = rest.substr(0, slash);
+          if (slash != std::string::npos) raw.comment = rest.substr(slash + 1);
+        }
+      } else {
+        raw.comment = card.substr(8);
+      }
+      auto trim = [](std::string& s) {
+        s.erase(0, std::min(s.size(), s.find_first_not_of(' ')));
+        s.erase(s.find_last_not_of(' ') + 1);
+      };
+      trim(raw.value);
+      trim(raw.comment);
+      if (!raw.key.empty()) cards.push_back(std::move(raw));
+    }
+  }
+  throw std::runtime_error("\"" + path + "\": no END card (not a FITS file)");
+}
+
+void write_preview(const std::string& path, const Image& image, const PreviewOptions& options) {
+  const std::string ext = lower_extension(path);
+  const bool png = ext == "png", tiff = ext == "tif" || ext == "tiff";
+  if (!png && !tiff) throw std::invalid_argument("preview \"" + path + "\": use a .png or .tif file name");
+  if (image.empty()) throw std::invalid_argument("write_preview: empty image");
+  const double lo = percentile(image.pixels, options.low_percentile);
+  double hi = percentile(image.pixels, options.high_percentile);
+  if (!(hi > lo)) hi = lo + 1.0;
+  const double soft = std::max(options.softening, 1e-6);
+  auto display = [&](float v) {
+    const double x = std::clamp((static_cast<double>(v) - lo) / (hi - lo), 0.0, 1.0);
+    return options.stretch == Stretch::asinh ? std::asinh(x / soft) / std::asinh(1.0 / soft) : x;
+  };
+  const int up = std::max(1, options.upscale);
+  const int w = image.width * up, h = image.height * up;
+  const double top = png ? 255.0 : 65535.0;
+  std::vector<std::uint16_t> wide(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      wide[static_cast<std::size_t>(y) * w + x] = static_cast<std::uint16_t>(std::lround(display(image(x / up, y / up)) * top));
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) oiio_failure("cannot write", path, {});
+  const OIIO::TypeDesc type = png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
+  OIIO::ImageSpec spec(w, h, 1, type);
+  spec.attribute("Software", "radchain render");
+  if (!out->open(path, spec)) oiio_failure("cannot write", path, out->geterror());
+  bool ok = false;
+  if (png) {
+    std::vector<std::uint8_t> narrow(wide.begin(), wide.end());
+    ok = out->write_image(OIIO::TypeDesc::UINT8, narrow.data());
+  } else {
+    ok = out->write_image(OIIO::TypeDesc::UINT16, wide.data());
+  }
+  if (!ok || !out->close()) oiio_failure("cannot write", path, out->geterror());
+}
+
+void write_png16(const std::string& path, const Image& image) {
+  if (lower_extension(path) != "png") throw std::invalid_argument("write_png16: \"" + path + "\" is not a .png path");
+  std::vector<std::uint16_t> values(image.size());
+  for (std::size_t i = 0; i < image.size(); ++i)
+    values[i] = static_cast<std::uint16_t>(std::lround(std::clamp(static_cast<double>(image.pixels[i]), 0.0, 1.0) * 65535.0));
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) oiio_failure("cannot write", path, {});
+  OIIO::ImageSpec spec(image.width, image.height, 1, OIIO::TypeDesc::UINT16);
+  spec.attribute("png:compressionLevel", 9);
+  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT16, values.data()) || !out->close())
+    oiio_failure("cannot write", path, out->geterror());
+}
+
+}  // namespace radchain::render

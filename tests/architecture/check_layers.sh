@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The layering rules of docs/architecture.md, checked on the sources and on the built libraries:
+#   core      includes no radchain/batch or radchain/imaging header, no TBB / OpenImageIO / FFTW / CLI11,
+#             and its library loads none of them;
+#   batch     includes no radchain/imaging header and no OpenImageIO / FFTW; its library loads neither;
+#   imaging   includes no radchain/batch header and no TBB; its library links neither (OpenImageIO loads TBB);
+#   plugins   include only core headers and link only radchain-core (and load no TBB / OpenImageIO / FFTW).
+# Usage: check_layers.sh SOURCE_DIR BINARY_DIR. Prints one line per broken rule; exit 1 if any.
+set -uo pipefail
+src=$1 bin=$2
+broken=0
+fail() { echo "layering: $*"; broken=1; }
+
+# forbid_includes DIR PATTERN WHAT: no source under DIR includes a header matching PATTERN.
+forbid_includes() {
+  local dir=$1 pattern=$2 what=$3 hits
+  hits=$(grep -rnE --include='*.cpp' --include='*.hpp' "^[[:space:]]*#[[:space:]]*include[[:space:]]*[<\"]($pattern)" "$src/$dir" 2>/dev/null)
+  if [ -n "$hits" ]; then
+    while IFS= read -r hit; do fail "${hit#"$src"/}: $what"; done <<<"$hits"
+  fi
+}
+forbid_includes framework/core 'radchain/batch/|radchain/imaging/' "core must not include batch or imaging"
+forbid_includes framework/core 'tbb/|oneapi/|OpenImageIO/|fftw3|CLI/' "core must not use TBB, OpenImageIO, FFTW or CLI11"
+forbid_includes framework/batch 'radchain/imaging/' "batch must not include imaging"
+forbid_includes framework/batch 'OpenImageIO/|fftw3' "batch must not use OpenImageIO or FFTW"
+forbid_includes framework/imaging 'radchain/batch/' "imaging must not include batch"
+forbid_includes framework/imaging 'tbb/|oneapi/' "imaging must not use TBB"
+forbid_includes plugins 'radchain/batch/|radchain/imaging/' "plugins use the core SDK only"
+forbid_includes plugins 'tbb/|oneapi/|OpenImageIO/|fftw3|CLI/' "plugins use the core SDK only"
+
+# forbid_loads LIBRARY PATTERN WHAT: ldd of LIBRARY (everything it loads) shows nothing matching PATTERN.
+forbid_loads() {
+  local lib=$1 pattern=$2 what=$3 hits
+  [ -f "$lib" ] || { fail "${lib#"$bin"/}: not built"; return; }
+  hits=$(ldd "$lib" | grep -E "$pattern" | awk '{print $1}' | tr '\n' ' ')
+  [ -z "$hits" ] || fail "${lib#"$bin"/} loads ${hits% }: $what"
+}
+core_lib=$(ls "$bin"/lib/libradchain-core.so 2>/dev/null)
+forbid_loads "${core_lib:-$bin/lib/libradchain-core.so}" 'libtbb|libOpenImageIO|libfftw3' "core links no TBB, OpenImageIO or FFTW"
+forbid_loads "$bin/lib/libradchain-batch.so" 'libOpenImageIO|libfftw3' "batch links no OpenImageIO or FFTW"
+# OpenImageIO itself loads TBB, so for imaging the rule is on what it links directly (NEEDED entries).
+needed=$(readelf -d "$bin/lib/libradchain-imaging.so" 2>/dev/null | grep -E 'NEEDED.*(libtbb|libradchain-batch)' | sed 's/.*\[\(.*\)\]/\1/' | tr '\n' ' ')
+[ -z "$needed" ] || fail "lib/libradchain-imaging.so links ${needed% }: imaging links no TBB and no batch"
+
+plugins=$(find "$bin/plugins" -name '*.so' | sort)
+[ -n "$plugins" ] || fail "no plugins under $bin/plugins"
+for plugin in $plugins; do
+  forbid_loads "$plugin" 'libtbb|libOpenImageIO|libfftw3|libradchain-batch|libradchain-imaging' "plugins link radchain::core only"
+done
+
+if [ "$broken" = 0 ]; then
+  echo "layering: core, batch, imaging and $(echo "$plugins" | wc -l) plugins keep their rules"
+fi
+exit "$broken"

@@ -1,0 +1,132 @@
+// Pushbroom Earth scenes: radiometry from the chain, the MTF model, sampling, determinism, the test scene.
+#include "radchain/physics/mtf.hpp"
+#include "radchain/imaging/render.hpp"
+#include "render_test_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace {
+using namespace radchain;
+using namespace radchain::render;
+using radchain::render_tests::load;
+
+const char* kolobrodov = "kolobrodov-1996-ccd151-computed.toml";
+
+EarthSceneOptions options(double input_sampling_m) {
+  EarthSceneOptions o;
+  o.input_sampling_m = input_sampling_m;
+  return o;
+}
+
+TEST(RenderEarth, RadiometryComesFromTheChain) {
+  auto k = load(kolobrodov);
+  const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, options(1.25));
+  // A step Δρ against the noise-equivalent exposure is the report's SNR (Kolobrodov eqs. 20-21).
+  EXPECT_NEAR(s.exposure_per_reflectance() * s.reflectance_difference / s.nee_J_m2, *k.report.value("detector.snr"), 1e-12);
+  // The background ρ0 against the saturation exposure is the detector's own background_saturation_fraction.
+  EXPECT_NEAR(s.background_reflectance, 0.3, 1e-15);
+  EXPECT_NEAR(s.exposure_per_reflectance() * 0.3 / s.saturation_J_m2, *k.report.value("detector.background_saturation_fraction"), 1e-12);
+  // Geometry and MTF inputs of the design.
+  EXPECT_NEAR(s.output_sampling_m, *k.report.value("criteria.resolution.ground_element"), 1e-12);
+  EXPECT_NEAR(s.output_sampling_m, 5.0, 1e-9);
+  EXPECT_NEAR(s.wavelength_m, 0.76e-6, 1e-18);
+  EXPECT_NEAR(s.f_number, *k.report.value("optics.f_number"), 1e-12);
+  EXPECT_NEAR(s.element_m, 7e-6, 1e-18);
+  EXPECT_NEAR(s.eta, 0.8, 1e-9);
+  EXPECT_NEAR(s.ground_to_focal(), *k.report.value("optics.focal_length") / 400e3, 1e-15);
+}
+
+TEST(RenderEarth, SystemMtfIsOpticsTimesElement) {
+  auto k = load(kolobrodov);
+  EarthSceneOptions o = options(1.25);
+  EarthSceneSetup s = earth_scene_setup(k.chain, k.report, o);
+  EXPECT_DOUBLE_EQ(system_mtf(s, 0, 0), 1.0);
+  const double scale = 400e3 / s.focal_length_m;  // ground → focal plane frequency
+  for (double nu : {0.02, 0.05, 0.1, 0.149}) {
+    const double f = nu * scale;
+    EXPECT_NEAR(system_mtf(s, nu, 0), physics::diffraction_mtf(f, 0.76e-6, s.f_number) * physics::detector_pixel_mtf(f, 7e-6), 1e-12);
+  }
+  // At the detector's Nyquist frequency (1/(2 pitch) on the focal plane) the element gives 2/π.
+  const double nyquist_ground = 0.5 / 7e-6 / scale;
+  EXPECT_NEAR(system_mtf(s, nyquist_ground, 0) / physics::diffraction_mtf(0.5 / 7e-6, 0.76e-6, s.f_number), 2.0 / M_PI, 1e-12);
+  o.optics = OpticsMtf::kolobrodov_eq7;
+  s = earth_scene_setup(k.chain, k.report, o);
+  const double nu_half = *k.report.value("detector.nu_half_contrast");  // ν_x1: eq. (7) gives 0.5 there (η from eq. 12)
+  EXPECT_NEAR(system_mtf(s, nu_half / scale, 0) / physics::detector_pixel_mtf(nu_half, 7e-6), 0.5, 1e-9);
+}
+
+TEST(RenderEarth, FlatStaysFlatAndSizesFollowTheSampling) {
+  auto k = load(kolobrodov);
+  EarthSceneOptions o = options(1.25);
+  o.noise = o.saturation = o.quantisation = false;
+  const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, o);
+  const Image out = filtered_reflectance(s, make_flat_scene(81, 41, 0.3));
+  ASSERT_EQ(out.width, 21);  // (81 − 1)/4 + 1
+  ASSERT_EQ(out.height, 11);
+  for (float v : out.pixels) EXPECT_NEAR(v, 0.3, 1e-6);
+  const Image exposure = render_earth_scene(s, make_flat_scene(81, 41, 0.3), 1);
+  EXPECT_NEAR(exposure(10, 5), 0.3 * s.exposure_per_reflectance(), 1e-6 * exposure(10, 5));
+  // A non-integer ratio (5 m from 1.5 m: Keys' cubic) keeps a ramp a ramp away from the sides.
+  o.input_sampling_m = 1.5;
+  o.optics = OpticsMtf::none;
+  o.detector_mtf = false;
+  const EarthSceneSetup t = earth_scene_setup(k.chain, k.report, o);
+  Image ramp(100, 20);
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 100; ++x) ramp(x, y) = static_cast<float>(0.2 + 0.004 * x);
+  const Image r = filtered_reflectance(t, ramp);
+  EXPECT_EQ(r.width, earth_output_size(t, 100));
+  EXPECT_EQ(r.width, 30);  // floor(99 / 3.333) + 1
+  for (int i = 2; i < r.width - 2; ++i) EXPECT_NEAR(r(i, 3), 0.2 + 0.004 * i * 5.0 / 1.5, 1e-5) << i;
+}
+
+TEST(RenderEarth, NoiseQuantisationAndSeeds) {
+  auto k = load(kolobrodov);
+  const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, options(5.0));
+  const Image map = make_test_scene({256, 5.0, 5.0, 0.3, 0.6, 0.003, 5.0});
+  const Image a = render_earth_scene(s, map, 11), b = render_earth_scene(s, map, 11), c = render_earth_scene(s, map, 12);
+  EXPECT_EQ(a.pixels, b.pixels);
+  EXPECT_NE(a.pixels, c.pixels);
+  for (float v : a.pixels) {
+    EXPECT_GE(v, 0.0f);
+    EXPECT_LE(v, 4095.0f);
+    EXPECT_EQ(v, std::floor(v));
+  }
+  // ρ0 = 0.3 lands at 17.5 % of the ADC range (the background_saturation_fraction): DN ≈ 0.175 × 4096.
+  EXPECT_NEAR(a(10, 200), 0.174916 * 4096, 8.0);
+  EXPECT_EQ(earth_unit(s), "adu");
+  const Header h = earth_scene_header(s, 11);
+  EXPECT_NEAR(*card_number(h, "GSD"), 5.0, 1e-9);
+  EXPECT_NEAR(*card_number(h, "SNR"), *k.report.value("detector.snr"), 1e-12);
+}
+
+TEST(RenderEarth, CommittedSceneIsTheGeneratorsOutput) {
+  // examples/scenes/bars-edges.png is make_test_scene() with its defaults, as a 16-bit PNG.
+  const std::string path = std::string(RADCHAIN_SOURCE_DIR) + "/examples/scenes/bars-edges.png";
+  ASSERT_TRUE(std::filesystem::exists(path));
+  EXPECT_LT(std::filesystem::file_size(path), 100u * 1024u);
+  const Image committed = read_reflectance_map(path);
+  const Image generated = make_test_scene();
+  ASSERT_EQ(committed.width, generated.width);
+  ASSERT_EQ(committed.height, generated.height);
+  double worst = 0;
+  for (std::size_t i = 0; i < generated.size(); ++i) worst = std::max(worst, std::abs(double(committed.pixels[i]) - generated.pixels[i]));
+  EXPECT_LE(worst, 0.5 / 65535.0 + 1e-7);
+  // The edge scene covers each pixel exactly: its mean is the mean of both sides.
+  const Image edge = make_edge_scene(64, 64, 5.0, 0.2, 0.6);
+  double sum = 0;
+  for (float v : edge.pixels) sum += v;
+  EXPECT_NEAR(sum / edge.size(), 0.4, 1e-6);
+}
+
+TEST(RenderEarth, RefusesSensorsItCannotRender) {
+  auto sbv = load("msx-sbv.toml");
+  EXPECT_THROW(earth_scene_setup(sbv.chain, sbv.report, options(1.0)), InputError);
+  auto k = load(kolobrodov);
+  EXPECT_THROW(earth_scene_setup(k.chain, k.report, options(0.0)), InputError);
+}
+
+}  // namespace

@@ -1,0 +1,150 @@
+// FITS and previews through OpenImageIO 2.4: pixels and header cards round-trip; the cards are standard FITS.
+#include "radchain/imaging/render.hpp"
+#include "render_test_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace {
+using namespace radchain;
+using namespace radchain::render;
+using radchain::render_tests::load;
+
+std::string temp_path(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "radchain-render-tests";
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+const RawCard* raw_card(const std::vector<RawCard>& cards, const std::string& key) {
+  for (const auto& c : cards)
+    if (c.key == key) return &c;
+  return nullptr;
+}
+
+TEST(RenderFits, FrameAndHeaderRoundTrip) {
+  auto sbv = load("msx-sbv.toml");
+  SpaceFrameOptions o;
+  o.width = 40;
+  o.height = 24;  // not square: rows and columns stay apart
+  o.stars.count = 5;
+  const SpaceFrameRenderer r(space_frame_setup(sbv.chain, sbv.report, o));
+  const Image frame = r.render(3);
+  const Header header = r.header(3);
+  ASSERT_EQ(fits_pixel_for(frame), FitsPixel::int16);
+  const std::string path = temp_path("frame.fits");
+  write_fits(path, frame, header, FitsPixel::int16);
+
+  const ImageFile file = read_image(path);
+  EXPECT_EQ(file.format, "fits");
+  EXPECT_EQ(file.pixel_type, "int16");
+  ASSERT_EQ(file.image.width, 40);
+  ASSERT_EQ(file.image.height, 24);
+  EXPECT_EQ(file.image.pixels, frame.pixels);  // row 0 stays the top row
+
+  // Every card comes back through OpenImageIO: text exactly, numbers to float precision, logicals as T/F.
+  for (const HeaderCard& card : header) {
+    const HeaderCard* back = find_card(file.header, card.key);
+    ASSERT_NE(back, nullptr) << card.key;
+    if (const auto* text = std::get_if<std::string>(&card.value)) {
+      EXPECT_EQ(std::get<std::string>(back->value), *text) << card.key;
+    } else if (const auto* flag = std::get_if<bool>(&card.value)) {
+      EXPECT_EQ(std::get<std::string>(back->value), *flag ? "T" : "F") << card.key;
+    } else {
+      const double expected = *card_number(header, card.key);
+      const auto got = card_number(file.header, card.key);
+      ASSERT_TRUE(got) << card.key;
+      EXPECT_NEAR(*got, expected, 1e-6 * std::abs(expected) + 1e-30) << card.key;
+    }
+  }
+  // And exactly, with comments, as other FITS readers see them.
+  const std::vector<RawCard> cards = read_fits_header_cards(path);
+  ASSERT_GE(cards.size(), 5u);
+  EXPECT_EQ(cards[0].key, "SIMPLE");
+  EXPECT_EQ(cards[1].key, "BITPIX");
+  EXPECT_EQ(cards[1].value, "16");
+  EXPECT_EQ(raw_card(cards, "NAXIS1")->value, "40");
+  EXPECT_EQ(raw_card(cards, "NAXIS2")->value, "24");
+  for (const HeaderCard& card : header) {
+    const RawCard* raw = raw_card(cards, card.key);
+    ASSERT_NE(raw, nullptr) << card.key;
+    EXPECT_EQ(raw->value, card_value_text(card)) << card.key;
+    if (!card.comment.empty()) {
+      EXPECT_EQ(card.comment.rfind(raw->comment, 0), 0u) << card.key;  // possibly cut
+    }
+  }
+  EXPECT_EQ(raw_card(cards, "GAIN")->value, "24.4140625");  // 1e5 / 4096, all digits
+  EXPECT_EQ(raw_card(cards, "GAIN")->comment, "[e-/adu] full well / 2^bits");
+  EXPECT_EQ(raw_card(cards, "BUNIT")->value, "'adu'");
+  EXPECT_EQ(raw_card(cards, "NADC")->value, "T");
+  EXPECT_EQ(raw_card(cards, "SENSFILE")->value, "'msx-sbv.toml'");
+  EXPECT_NEAR(std::stod(raw_card(cards, "LIMMAG")->value), sbv.report.value("target.magnitude").value(), 1e-15);
+}
+
+TEST(RenderFits, FloatAndInt32Frames) {
+  Image image(7, 5);
+  for (std::size_t i = 0; i < image.size(); ++i) image.pixels[i] = static_cast<float>(i) * 1.25f - 3.0f;
+  const Header header = {{"EXPTIME", 0.625, "[s] integration time"}, {"NBITS", std::int64_t{16}, ""}, {"FLAG", false, "a logical"}};
+  EXPECT_EQ(fits_pixel_for(image), FitsPixel::float32);
+  const std::string f = temp_path("float.fits");
+  write_fits(f, image, header, FitsPixel::float32);
+  const ImageFile back = read_image(f);
+  EXPECT_EQ(back.pixel_type, "float");
+  EXPECT_EQ(back.image.pixels, image.pixels);
+  EXPECT_EQ(read_fits_header_cards(f)[1].value, "-32");
+
+  Image big(3, 2);
+  big.pixels = {0, 40000, 65535, 70000, 1, 2};  // beyond int16: int32
+  EXPECT_EQ(fits_pixel_for(big), FitsPixel::int32);
+  const std::string i32 = temp_path("int32.fits");
+  write_fits(i32, big, header, FitsPixel::int32);
+  EXPECT_EQ(read_image(i32).image.pixels, big.pixels);
+  EXPECT_EQ(read_fits_header_cards(i32)[1].value, "32");
+  EXPECT_THROW(write_fits(temp_path("bad16.fits"), big, header, FitsPixel::int16), std::invalid_argument);
+}
+
+TEST(RenderFits, CardsAreStandardFits) {
+  Image image(2, 2, 1.0f);
+  const std::string long_text(100, 'x');
+  const Header header = {{"OBJECT", std::string("it's a test"), "quote doubled"},
+                         {"LONGTEXT", long_text, "cut to 68 characters"},
+                         {"SMALL", 1e-17, ""},
+                         {"WHOLE", 5.0, "a real that is whole"}};
+  const std::string path = temp_path("cards.fits");
+  write_fits(path, image, header);
+  const auto cards = read_fits_header_cards(path);
+  EXPECT_EQ(raw_card(cards, "OBJECT")->value, "'it''s a test'");
+  EXPECT_EQ(raw_card(cards, "LONGTEXT")->value, "'" + std::string(68, 'x') + "'");
+  EXPECT_EQ(raw_card(cards, "SMALL")->value, "1E-17");
+  EXPECT_EQ(raw_card(cards, "WHOLE")->value, "5.0");
+  EXPECT_THROW(write_fits(path, image, {{"TOOLONGKEY", 1.0, ""}}), std::invalid_argument);
+  EXPECT_THROW(write_fits(path, image, {{"BITPIX", 1.0, ""}}), std::invalid_argument);
+  EXPECT_THROW(write_fits(path, image, {{"A", 1.0, ""}, {"A", 2.0, ""}}), std::invalid_argument);
+}
+
+TEST(RenderFits, PreviewsAndScenes) {
+  Image ramp(32, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 32; ++x) ramp(x, y) = static_cast<float>(x);
+  const std::string png = temp_path("preview.png"), tif = temp_path("preview.tif");
+  write_preview(png, ramp, {Stretch::linear, 0.0, 100.0, 0.02, 2});
+  const ImageFile p = read_image(png);
+  EXPECT_EQ(p.pixel_type, "uint8");
+  EXPECT_EQ(p.image.width, 64);
+  EXPECT_EQ(p.image(0, 0), 0.0f);
+  EXPECT_EQ(p.image(63, 31), 255.0f);
+  write_preview(tif, ramp);
+  EXPECT_EQ(read_image(tif).pixel_type, "uint16");
+  EXPECT_THROW(write_preview(temp_path("preview.jpg"), ramp), std::invalid_argument);
+  // 16-bit PNG reflectance maps come back normalised.
+  Image map(8, 8, 0.3f);
+  map(3, 4) = 0.303f;
+  const std::string scene = temp_path("scene.png");
+  write_png16(scene, map);
+  const Image back = read_reflectance_map(scene);
+  for (std::size_t i = 0; i < map.size(); ++i) EXPECT_NEAR(back.pixels[i], map.pixels[i], 0.5 / 65535.0 + 1e-7);
+}
+
+}  // namespace
