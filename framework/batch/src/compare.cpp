@@ -244,8 +244,22 @@ std::string pct_cell(double relative) { return std::isnan(relative) ? "" : fmt::
 std::string result_status(const ResultDifference& r, std::optional<double> tolerance) {
   if (!r.in_a) return tolerance ? "EXCEEDS (only in B)" : "only in B";
   if (!r.in_b) return tolerance ? "EXCEEDS (only in A)" : "only in A";
-  if (tolerance) return r.exceeds(*tolerance) ? "EXCEEDS" : r.same() ? "same" : "ok";
-  return r.same() ? "same" : "differs";
+  if (r.same()) return "same";
+  if (tolerance) return r.exceeds(*tolerance) ? "EXCEEDS" : "ok";
+  return r.exceeds(rounding_tolerance) ? "differs" : "ok";
+}
+
+// The solved unknowns (A's solves, then B's) to the front, each group in its previous order.
+void solved_unknowns_first(const Report& a, const Report& b, std::vector<ResultDifference>& results) {
+  std::vector<std::string> unknowns;
+  for (const Report* report : {&a, &b})
+    for (const auto& s : report->solves)
+      if (std::find(unknowns.begin(), unknowns.end(), s.spec.unknown) == unknowns.end()) unknowns.push_back(s.spec.unknown);
+  auto rank = [&](const ResultDifference& r) {
+    return static_cast<std::size_t>(std::find(unknowns.begin(), unknowns.end(), r.name) - unknowns.begin());
+  };
+  std::stable_sort(results.begin(), results.end(),
+                   [&](const ResultDifference& x, const ResultDifference& y) { return rank(x) < rank(y); });
 }
 
 TableLayout comparison_layout() {
@@ -274,7 +288,7 @@ bool ResultDifference::exceeds(double rel_tolerance) const {
   return std::abs(b_si - a_si) > rel_tolerance * std::max(std::abs(a_si), std::abs(b_si));
 }
 
-CompareInput load_compare_input(const std::string& path, const std::vector<Override>& overrides) {
+CompareInput load_compare_input(const std::string& path, const std::vector<Override>& overrides, bool solve) {
   CompareInput input;
   input.path = path;
   if (ends_with(path, ".json")) {
@@ -282,6 +296,7 @@ CompareInput load_compare_input(const std::string& path, const std::vector<Overr
     input.report = report_from_json(path);
   } else {
     input.chain.emplace(load_sensor(path, overrides));
+    if (!solve) input.chain->solves.clear();  // forward only: the unknowns keep their values
     // run() leaves the solved values in the unknowns; the inputs compared are the file's (as validated).
     std::vector<std::pair<ParameterRef, double>> unknowns;
     for (const auto& s : input.chain->solves) {
@@ -319,6 +334,7 @@ Comparison compare(const CompareInput& a, const CompareInput& b) {
     if (seen.count(info.name)) continue;
     c.results.push_back(ResultDifference{info.name, info.display_unit, info.display_factor, nan, b.report.values[i], false, true});
   }
+  solved_unknowns_first(a.report, b.report, c.results);
 
   std::vector<std::string> unknowns;
   for (const auto& s : a.report.solves) unknowns.push_back(s.spec.unknown);
@@ -396,8 +412,8 @@ std::string format_comparison_text(const Comparison& c, std::optional<double> to
   std::istringstream lines(table.str());
   for (std::string line; std::getline(lines, line);) out += "  " + line + "\n";
   std::size_t differ = 0;
-  for (const auto& r : c.results) differ += r.same() ? 0 : 1;
-  out += fmt::format("{} results, {} differ", c.results.size(), differ);
+  for (const auto& r : c.results) differ += r.exceeds(rounding_tolerance) ? 1 : 0;
+  out += fmt::format("{} results, {} differ by more than {:g}", c.results.size(), differ, rounding_tolerance);
   if (tolerance) out += fmt::format("; tolerance {:g}: {} exceed", *tolerance, count_exceeding(c, *tolerance));
   out += "\n";
   return out;

@@ -3,7 +3,9 @@
 // every result (signal, each noise term, SNR, geometry, solved unknowns ...) with B − A in A's display unit
 // and in percent, and, for sensor files, what differs in the inputs: the validated parameters section by
 // section (as written, and in SI), the [[solve]] entries and the [expected] references.
-// With a tolerance it is a regression test: exit 1 when a result moved by more than it.
+// With a tolerance it is a regression test: exit 1 when a result moved by more than it. Without one, moves
+// within rounding_tolerance are reported "ok", not "differs": two runs of the same physics reached by other
+// arithmetic (a unit written differently, a solve started elsewhere) agree only to ~1e-12.
 #include "radchain/chain.hpp"
 #include "radchain/batch/table.hpp"
 
@@ -13,6 +15,10 @@
 
 namespace radchain {
 
+// Relative moves up to this count as rounding when no --tolerance is given. The solver stops within 2^-47
+// (7e-15) of the root; the chain's results downstream of it move by a few times that, far below any physics.
+inline constexpr double rounding_tolerance = 1e-9;
+
 struct CompareInput {
   std::string path;
   std::string sensor_name;
@@ -21,9 +27,9 @@ struct CompareInput {
   std::optional<Chain> chain;     // a sensor file: its validated parameters
 };
 
-// A path ending in .json is a results file, anything else a sensor file (loaded and run, solves included).
-// Throws InputError.
-CompareInput load_compare_input(const std::string& path, const std::vector<Override>& overrides = {});
+// A path ending in .json is a results file, anything else a sensor file (loaded and run, its solves included
+// unless `solve` is false). Throws InputError.
+CompareInput load_compare_input(const std::string& path, const std::vector<Override>& overrides = {}, bool solve = true);
 
 struct InputDifference {
   std::string name;              // "optics.aperture", "optics.plugin", "solve[1].bracket", "expected.optics.aperture.value"
@@ -51,7 +57,7 @@ struct Comparison {
   std::string a_path, b_path, a_name, b_name;
   bool inputs_compared = false;  // both are sensor files
   std::vector<InputDifference> inputs;   // only what differs
-  std::vector<ResultDifference> results; // every result, A's order then B's own
+  std::vector<ResultDifference> results; // every result: the solved unknowns first, then A's order, then B's own
   std::vector<std::string> solves;       // one line per solve: converged? binding criterion? in A and B
 };
 
@@ -61,7 +67,9 @@ std::size_t count_exceeding(const Comparison& comparison, double rel_tolerance);
 // "1e-6", "0.1%": a relative tolerance. Throws InputError.
 double parse_tolerance(const std::string& text);
 
-// Text: the inputs that differ, then every result side by side, then a summary line.
+// Text: the inputs that differ, then every result side by side, then a summary line. Status of a result:
+// same (bit for bit), ok (within the tolerance, else within rounding_tolerance), differs (no tolerance given)
+// or EXCEEDS (the tolerance given).
 std::string format_comparison_text(const Comparison& comparison, std::optional<double> tolerance = {});
 // CSV / JSON: one table, columns kind (input/result), name, a, b, unit, delta, delta_pct, status.
 void write_comparison(const Comparison& comparison, TableFormat format, std::ostream& out,
