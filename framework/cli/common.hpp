@@ -1,6 +1,7 @@
 #pragma once
-// What several commands share: --set parsing, the output stream (--out or stdout), --format and --shard.
-#include "commands.hpp"
+// What the batch commands share: the output stream (--out or stdout), --format and --shard.
+#include "options.hpp"
+#include "overrides.hpp"
 
 #include "radchain/batch/shard.hpp"
 #include "radchain/batch/table.hpp"
@@ -10,10 +11,6 @@
 #include <string>
 
 namespace radchain::cli {
-
-// --set key=value; the value may be quoted for the shell's sake: optics.aperture="20 cm".
-Override parse_override(const std::string& text);
-std::string unquoted(std::string text);
 
 // The stream a command writes to: --out file, or stdout.
 class Sink {

@@ -1,15 +1,11 @@
 // `radchain catalogue`: many sensor files, key results against their [expected] references.
+#include "../commands.hpp"
 #include "../common.hpp"
 #include "../progress.hpp"
-#include "radchain/chain.hpp"
-#include "radchain/error.hpp"
+
 #include "radchain/batch/catalogue.hpp"
 #include "radchain/batch/thread_pool.hpp"
 
-#include <fmt/format.h>
-
-#include <algorithm>
-#include <fstream>
 #include <iostream>
 
 namespace radchain::cli {

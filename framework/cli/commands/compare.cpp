@@ -1,13 +1,10 @@
 // `radchain compare`: two sensor files or saved results side by side.
+#include "../commands.hpp"
 #include "../common.hpp"
-#include "radchain/chain.hpp"
-#include "radchain/error.hpp"
+
 #include "radchain/batch/compare.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
-#include <fstream>
 #include <iostream>
 
 namespace radchain::cli {
@@ -17,8 +14,16 @@ int compare(const CompareCommand& command) {
   if (!command.tolerance.empty()) tolerance = parse_tolerance(command.tolerance);
   const TableFormat format = format_of(command.output, TableFormat::text);
   const auto overrides = parse_overrides(command.sets);
-  const CompareInput a = load_compare_input(command.a, overrides);
-  const CompareInput b = load_compare_input(command.b, overrides);
+  const CompareInput a = load_compare_input(command.a, overrides, !command.no_solve);
+  const CompareInput b = load_compare_input(command.b, overrides, !command.no_solve);
+  // One warning per --set that a [[solve]] overwrites, in A or in B.
+  std::vector<SolveSpec> solves;
+  for (const CompareInput* input : {&a, &b})
+    if (input->chain)
+      for (const auto& s : input->chain->solves)
+        if (std::none_of(solves.begin(), solves.end(), [&](const SolveSpec& x) { return x.unknown == s.unknown; }))
+          solves.push_back(s);
+  warn_about_solved_overrides(solves, overrides, std::cerr);
   const Comparison comparison = radchain::compare(a, b);
   Sink sink(command.output.out);
   write_comparison(comparison, format, sink.stream(), tolerance);

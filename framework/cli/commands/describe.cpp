@@ -1,20 +1,48 @@
-// `radchain describe <plugin>`: a plugin's keys, units, defaults, ranges and a TOML example.
-#include "../common.hpp"
-#include "radchain/chain.hpp"
+// `radchain describe <plugin>`: a plugin's keys, units, defaults, ranges, the results it publishes and needs
+// (its contract with the other stages, radchain/vocabulary.hpp), and a TOML example.
+// `radchain describe <kind>` ("criterion", or its section "criteria"): the plugins of that kind, one line each.
+#include "../commands.hpp"
+
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
+#include "radchain/schema.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
-#include <iostream>
+#include <optional>
+#include <utility>
+#include <vector>
 
 namespace radchain::cli {
 
 namespace {
 
 std::string kind_section_example(Kind kind) { return kind == Kind::criterion ? "criteria.<name>" : to_string(kind); }
+
+// "criteria.*.margin" reads as the criterion section a user writes.
+std::string shown_name(const Term& term) {
+  return term.per_criterion() ? term.in_criterion("<name>") : std::string(term.name);
+}
+
+void print_terms(const char* heading, const std::vector<std::pair<Term, std::string>>& terms) {
+  fmt::print("\n{}\n", heading);
+  if (terms.empty()) fmt::print("  (none)\n");
+  std::size_t width = 0, unit_width = 0;
+  for (const auto& [term, note] : terms)
+    width = std::max(width, shown_name(term).size()), unit_width = std::max(unit_width, term.unit.size() + 2);
+  for (const auto& [term, note] : terms)
+    fmt::print("  {:<{}}  {:<{}}  {}{}\n", shown_name(term), width, fmt::format("[{}]", term.unit), unit_width, term.meaning,
+               note);
+}
+
+void print_contract(const PluginInfo& info) {
+  std::vector<std::pair<Term, std::string>> publishes, needs;
+  for (const Term& t : info.publishes) publishes.emplace_back(t, "");
+  for (const Need& n : info.needs) needs.emplace_back(n.term, n.optional ? " (read if an earlier stage publishes it)" : "");
+  print_terms("publishes:", publishes);
+  print_terms("needs:", needs);
+}
 
 void print_description(const PluginInfo& info, const std::string& path) {
   fmt::print("{} — {} plugin (framework {}, ABI {})\n", info.name, to_string(info.kind), info.framework_version, info.abi_version);
@@ -40,6 +68,7 @@ void print_description(const PluginInfo& info, const std::string& path) {
     const std::string range = p.range_text();
     if (!range.empty()) fmt::print("  {:<{}}  {:<24} accepted: {}\n", "", width, "", range);
   }
+  print_contract(info);
   fmt::print("\nexample:\n[{}]\nplugin = \"{}\"\n", kind_section_example(info.kind), info.name);
   for (const auto& p : schema) {
     const std::string value = p.required || !p.default_value ? p.example
@@ -52,9 +81,34 @@ void print_description(const PluginInfo& info, const std::string& path) {
   }
 }
 
+void print_kind(Kind kind) {
+  const KindInfo& k = *std::find_if(kinds.begin(), kinds.end(), [&](const KindInfo& i) { return i.kind == kind; });
+  fmt::print("{} plugins (section [{}]):\n", k.name, kind_section_example(kind));
+  std::vector<const PluginInfo*> found;
+  std::size_t width = 0;
+  for (const auto& f : PluginHost::instance().discover())
+    if (f.kind == kind) {
+      found.push_back(&PluginHost::instance().load_file(f.path));
+      width = std::max(width, f.name.size());
+    }
+  for (const PluginInfo* info : found) fmt::print("  {:<{}}  {}\n", info->name, width, info->summary);
+  if (found.empty()) fmt::print("  (none on the search path)\n");
+}
+
+std::optional<Kind> kind_named(const std::string& name) {
+  if (auto kind = kind_from_name(name)) return kind;
+  for (const KindInfo& k : kinds)
+    if (k.section == name) return k.kind;
+  return std::nullopt;
+}
+
 }  // namespace
 
 int describe(const std::string& name) {
+  if (auto kind = kind_named(name)) {
+    print_kind(*kind);
+    return 0;
+  }
   if (name.find('/') != std::string::npos) {
     print_description(PluginHost::instance().load_file(name), name);
     return 0;
@@ -66,10 +120,14 @@ int describe(const std::string& name) {
     }
   std::vector<std::string> names;
   for (const auto& f : PluginHost::instance().discover()) names.push_back(f.name);
-  const std::string near = nearest_match(name, names);
+  std::vector<std::string> kind_names;
+  for (const KindInfo& k : kinds) kind_names.emplace_back(k.name);
+  std::vector<std::string> candidates = names;
+  candidates.insert(candidates.end(), kind_names.begin(), kind_names.end());
+  const std::string near = nearest_match(name, candidates);
   throw InputError({}, "describe", name,
-                   fmt::format("unknown plugin{}; available: {}", near.empty() ? "" : " (did you mean \"" + near + "\"?)",
-                               join(names)));
+                   fmt::format("unknown plugin or kind{}; plugins: {}; kinds: {}",
+                               near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(names), join(kind_names)));
 }
 
 }  // namespace radchain::cli

@@ -1,13 +1,6 @@
 // `radchain merge`: shard files joined into the output of the unsharded job.
+#include "../commands.hpp"
 #include "../common.hpp"
-#include "radchain/chain.hpp"
-#include "radchain/error.hpp"
-
-#include <fmt/format.h>
-
-#include <algorithm>
-#include <fstream>
-#include <iostream>
 
 namespace radchain::cli {
 

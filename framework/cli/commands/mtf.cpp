@@ -1,20 +1,21 @@
-// `radchain mtf`: MTF curves of a pushbroom design (Kolobrodov 1996 Fig. 2) as CSV and optionally a PNG.
-#include "../common.hpp"
+// `radchain mtf` (in the imaging module): MTF curves of a pushbroom design (Kolobrodov 1996 Fig. 2) as CSV and
+// optionally a PNG.
+#include "imaging_common.hpp"
+#include "../overrides.hpp"
 #include "../plot.hpp"
-#include "radchain/chain.hpp"
+
 #include "radchain/error.hpp"
 #include "radchain/imaging/mtf_curves.hpp"
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <fstream>
 #include <iostream>
 
 namespace radchain::cli {
 
-int mtf(const MtfCommand& options) {
-  Chain chain = load_sensor(options.sensor, parse_overrides(options.sets));
+int mtf_command(const MtfCommand& options) {
+  Chain chain = load_sensor_of(options.sensor);
   const Report report = chain.run();
   const MtfCurves curves = mtf_curves(report);
   const std::string csv = mtf_curves_csv(curves);

@@ -1,19 +1,17 @@
 // `radchain plugins`: the plugins on the search path.
-#include "../common.hpp"
-#include "radchain/chain.hpp"
+#include "../commands.hpp"
+
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
+#include "radchain/version.hpp"
 
 #include <fmt/format.h>
-
-#include <algorithm>
-#include <fstream>
-#include <iostream>
 
 namespace radchain::cli {
 
 int plugins() {
   const auto found = PluginHost::instance().discover();
+  fmt::print("radchain {}, plugin ABI {}\n", framework_version, plugin_abi_version);
   fmt::print("{:<20} {:<11} {:<8} {}\n", "name", "kind", "version", "file");
   for (const auto& f : found) {
     const PluginInfo& info = PluginHost::instance().load_file(f.path);

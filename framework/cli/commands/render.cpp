@@ -1,47 +1,22 @@
-// `radchain render` and `radchain validate`: option structs in, framework calls (radchain/render.hpp), exit code out.
-#include "../render_commands.hpp"
+// `radchain render` (in the imaging module): a detector frame (point targets) or an Earth scene (pushbroom),
+// written as FITS/TIFF/EXR and a preview.
+#include "imaging_common.hpp"
+#include "../overrides.hpp"
 
-#include "../commands.hpp"
-
-#include "radchain/chain.hpp"
 #include "radchain/error.hpp"
 #include "radchain/imaging/render.hpp"
-#include "radchain/units.hpp"
 
 #include <fmt/format.h>
 
-#include <filesystem>
-
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 namespace radchain::cli {
 namespace {
 
 using namespace radchain::render;
-
-[[noreturn]] void bad(const std::string& option, const std::string& value, const std::string& problem) {
-  throw InputError(SourceLocation{option, 0, 0}, "", value, problem);
-}
-
-// "45 cm" → metres (si_unit "m"); a bare number only for dimensionless options.
-std::optional<double> quantity(const std::string& option, const std::string& text, const std::string& si_unit,
-                               const std::string& example) {
-  if (text.empty()) return std::nullopt;
-  try {
-    const units::ParsedQuantity q = units::split_quantity(text);
-    if (q.unit.empty()) {
-      if (si_unit == "1") return q.number;
-      bad(option, text, "expected " + units::dimension_name(si_unit) + " with its unit, e.g. \"" + example + "\"");
-    }
-    return q.number * units::conversion(q.unit, si_unit).factor;
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception&) {
-    bad(option, text, "expected " + units::dimension_name(si_unit) + ", e.g. \"" + example + "\"");
-  }
-}
 
 NoiseTerms noise_of(const std::vector<std::string>& off) {
   NoiseTerms n;
@@ -55,32 +30,10 @@ NoiseTerms noise_of(const std::vector<std::string>& off) {
       else if (t == "read") n.read = false;
       else if (t == "saturation") n.saturation = false;
       else if (t == "adc" || t == "quantisation") n.quantisation = false;
-      else bad("--no-noise", t, "expected shot, dark, read, saturation, adc or all");
+      else bad_option("--no-noise", t, "expected shot, dark, read, saturation, adc or all");
     }
   }
   return n;
-}
-
-bool is_point_target_sensor(Chain& chain) {
-  if (!chain.results().find("detector.signal_electrons") || !chain.results().find("detector.noise_electrons")) return false;
-  try {
-    chain.parameter("target.magnitude");
-    return true;
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
-void geometry_options(SpaceFrameOptions& o, const std::string& focal_length, const std::string& pixel_pitch, const std::string& psf,
-                      const std::string& wavelength, const std::string& fwhm) {
-  o.focal_length_m = quantity("--focal-length", focal_length, "m", "45 cm");
-  o.pixel_pitch_m = quantity("--pixel-pitch", pixel_pitch, "m", "27 um");
-  o.psf_wavelength_m = quantity("--psf-wavelength", wavelength, "m", "0.6 um");
-  o.gaussian_fwhm_m = quantity("--psf-fwhm", fwhm, "m", "20 um");
-  if (!psf.empty()) {
-    o.psf = psf_model_from_string(psf);
-    if (!o.psf) bad("--psf", psf, "expected pixel, airy or gaussian");
-  }
 }
 
 FitsPixel fits_type_of(const std::string& name, const Image& image) {
@@ -88,7 +41,7 @@ FitsPixel fits_type_of(const std::string& name, const Image& image) {
   if (name == "float") return FitsPixel::float32;
   if (name == "int16") return FitsPixel::int16;
   if (name == "int32") return FitsPixel::int32;
-  bad("--fits-type", name, "expected auto, float, int16 or int32");
+  bad_option("--fits-type", name, "expected auto, float, int16 or int32");
 }
 
 PreviewOptions preview_of(const RenderCommand& c, bool space) {
@@ -100,7 +53,7 @@ PreviewOptions preview_of(const RenderCommand& c, bool space) {
   }
   if (c.stretch == "linear") p.stretch = Stretch::linear;
   else if (c.stretch == "asinh") p.stretch = Stretch::asinh;
-  else if (!c.stretch.empty()) bad("--stretch", c.stretch, "expected asinh or linear");
+  else if (!c.stretch.empty()) bad_option("--stretch", c.stretch, "expected asinh or linear");
   p.upscale = std::clamp(c.upscale, 1, 16);
   return p;
 }
@@ -115,7 +68,7 @@ void write_outputs(const RenderCommand& c, const Image& image, const Header& hea
       write_float_image(c.out, image, header);
       fmt::print("wrote {} ({}×{}, 32-bit float, {} metadata entries)\n", c.out, image.width, image.height, header.size());
     } else {
-      bad("--out", c.out, "expected a .fits, .tif or .exr file for the data (previews: --png frame.png)");
+      bad_option("--out", c.out, "expected a .fits, .tif or .exr file for the data (previews: --png frame.png)");
     }
   }
   if (!c.preview.empty()) {
@@ -136,12 +89,12 @@ int render_space(Chain& chain, const Report& report, const RenderCommand& c) {
     try {
       while (std::getline(list, item, ',')) v.push_back(item == "limit" ? std::nan("") : std::stod(item));
     } catch (const std::exception&) {
-      bad("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
+      bad_option("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
     }
     if (v.size() == 1) o.targets.push_back({std::floor(c.width / 2.0) + 0.5, std::floor(c.height / 2.0) + 0.5, v[0]});
     else if (v.size() == 3) o.targets.push_back({v[0], v[1], v[2]});
-    else bad("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
-    if (v.size() == 3 && (std::isnan(v[0]) || std::isnan(v[1]))) bad("--target", t, "the position must be numbers");
+    else bad_option("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
+    if (v.size() == 3 && (std::isnan(v[0]) || std::isnan(v[1]))) bad_option("--target", t, "the position must be numbers");
   }
   o.stars.count = c.stars;
   o.stars.slope = c.star_slope;
@@ -153,10 +106,10 @@ int render_space(Chain& chain, const Report& report, const RenderCommand& c) {
       o.stars.bright_magnitude = std::stod(c.star_magnitudes.substr(0, colon));
       o.stars.faint_magnitude = std::stod(c.star_magnitudes.substr(colon + 1));
     } catch (const std::exception&) {
-      bad("--star-magnitudes", c.star_magnitudes, "expected bright:faint, e.g. 8:17");
+      bad_option("--star-magnitudes", c.star_magnitudes, "expected bright:faint, e.g. 8:17");
     }
   }
-  geometry_options(o, c.focal_length, c.pixel_pitch, c.psf, c.psf_wavelength, c.psf_fwhm);
+  apply_frame_geometry(o, c.geometry);
   o.obscuration = quantity("--obscuration", c.obscuration, "1", "0.3");
   o.sky_electrons_per_pixel = quantity("--sky", c.sky, "electron", "40 e-");
   o.oversampling = c.oversampling;
@@ -186,7 +139,7 @@ int render_earth(Chain& chain, const Report& report, const RenderCommand& c) {
   o.output_sampling_m = quantity("--gsd", c.gsd, "m", "5 m");
   o.wavelength_m = quantity("--wavelength", c.wavelength, "m", "0.76 um");
   const auto mtf = optics_mtf_from_string(c.optics_mtf);
-  if (!mtf) bad("--optics-mtf", c.optics_mtf, "expected diffraction, eq7 or none");
+  if (!mtf) bad_option("--optics-mtf", c.optics_mtf, "expected diffraction, eq7 or none");
   o.optics = *mtf;
   o.detector_mtf = !c.no_detector_mtf;
   o.adc_bits = c.adc_bits;
@@ -206,7 +159,7 @@ int render_earth(Chain& chain, const Report& report, const RenderCommand& c) {
     o.input_sampling_m = scene.sampling_m;
   } else {
     const auto sampling = quantity("--scene-sampling", c.scene_sampling, "m", "1.25 m");
-    if (!sampling) bad("--scene-sampling", "", "give the ground size of one pixel of " + c.scene + ", e.g. \"1.25 m\"");
+    if (!sampling) bad_option("--scene-sampling", "", "give the ground size of one pixel of " + c.scene + ", e.g. \"1.25 m\"");
     o.input_sampling_m = *sampling;
     map = read_reflectance_map(c.scene);
   }
@@ -224,56 +177,12 @@ int render_earth(Chain& chain, const Report& report, const RenderCommand& c) {
 }  // namespace
 
 int render_command(const RenderCommand& c) {
-  Chain chain = load_sensor(c.sensor, parse_overrides(c.sets));
+  Chain chain = load_sensor_of(c.sensor);
   const Report report = chain.run();
-  if (!report.all_passed()) fmt::print(stderr, "radchain render: {}: a solve or an [expected] check failed (rendering anyway)\n", c.sensor);
+  if (!report.all_passed())
+    fmt::print(stderr, "radchain render: {}: a solve or an [expected] check failed (rendering anyway)\n", c.sensor.sensor);
   if (is_point_target_sensor(chain)) return render_space(chain, report, c);
   return render_earth(chain, report, c);
-}
-
-int validate_command(const ValidateCommand& c) {
-  Chain chain = load_sensor(c.sensor, parse_overrides(c.sets));
-  const Report report = chain.run();
-  bool ok = true;
-  auto verdict = [&](bool passed) {
-    ok = ok && passed;
-    return passed ? "ok  " : "FAIL";
-  };
-  if (is_point_target_sensor(chain)) {
-    SpaceFrameOptions frame;
-    geometry_options(frame, c.focal_length, c.pixel_pitch, c.psf, c.psf_wavelength, c.psf_fwhm);
-    DetectionCheckOptions d;
-    d.trials = c.trials;
-    d.seed = c.seed;
-    d.threshold_sigma = c.threshold_sigma;
-    const DetectionCheck check = check_detection(chain, report, frame, d);
-    fmt::print("{}: detection at the limiting magnitude {:.4f} (S = {:.4g} e-, n = {:.4g} e-, σ₀ = {:.4g} e-, SNR = {:.4g}, "
-               "window {}×{}, threshold γ = {:.4g} σ₀, at a level between two window sums {:.4g} σ₀)\n",
-               c.sensor, check.magnitude, check.signal_electrons, check.noise_electrons, check.noise_only_electrons, check.snr,
-               check.window, check.window, check.threshold_sigma, check.effective_threshold_sigma);
-    fmt::print("  {} rendered window signal {:.5g} e- vs chain {:.5g} e-\n",
-               verdict(std::abs(check.rendered_signal_electrons / check.signal_electrons - 1.0) <= 0.01),
-               check.rendered_signal_electrons, check.signal_electrons);
-    for (const auto& [name, rate] : {std::pair{"P_d ", check.detection}, std::pair{"P_fa", check.false_alarm}})
-      fmt::print("  {} {} measured {:.6f} ({} of {}), Gaussian criterion {:.6f} (z = {:+.2f}), renderer's exact law {:.6f} (z = {:+.2f})\n",
-                 verdict(std::abs(rate.z_predicted()) <= c.max_z), name, rate.measured, rate.count, rate.trials, rate.predicted,
-                 rate.z_predicted(), rate.exact, rate.z_exact());
-    const FlatFieldCheck flat = check_space_flat_field(chain, report, frame, c.size, c.seed);
-    fmt::print("  {} flat field: measured SNR {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.5g} vs {:.5g} e-\n",
-               verdict(flat.passed(c.max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
-               flat.measured_noise, flat.predicted_noise);
-  } else {
-    EarthSceneOptions scene;
-    const EdgeCheck edge = check_edge_mtf(chain, report, scene);
-    fmt::print("{}: slanted edge at {:.2f}°: MTF at Nyquist measured {:.4f}, model {:.4f}; max deviation up to Nyquist {:.2f} %\n",
-               c.sensor, edge.angle_deg, edge.mtf_at_nyquist_measured, edge.mtf_at_nyquist_model, 100 * edge.max_relative_error);
-    fmt::print("  {} edge MTF within {:.0f} %\n", verdict(edge.passed()), 100 * edge.tolerance);
-    const FlatFieldCheck flat = check_earth_flat_field(chain, report, scene, c.size, c.seed);
-    fmt::print("  {} flat fields: measured SNR of Δρ {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.4g} vs {:.4g} J m-2\n",
-               verdict(flat.passed(c.max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
-               flat.measured_noise, flat.predicted_noise);
-  }
-  return ok ? 0 : 1;
 }
 
 }  // namespace radchain::cli

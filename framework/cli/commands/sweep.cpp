@@ -1,8 +1,9 @@
 // `radchain sweep`: a grid of parameter values, solves at every point; optionally a plot of a 1-D sweep.
+#include "../commands.hpp"
 #include "../common.hpp"
 #include "../plot.hpp"
 #include "../progress.hpp"
-#include "radchain/chain.hpp"
+
 #include "radchain/error.hpp"
 #include "radchain/batch/sweep.hpp"
 #include "radchain/batch/thread_pool.hpp"
@@ -10,15 +11,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
 #include <iostream>
 
 namespace radchain::cli {
 
 int sweep(const SweepCommand& command) {
   SweepOptions options;
-  options.sensor_file = command.sensor;
-  for (const auto& s : command.sets) {
+  options.sensor_file = command.sensor.sensor;
+  for (const auto& s : command.sensor.sets) {
     Override o = parse_override(s);
     if (is_sweep_range(unquoted(o.value)))
       options.axes.emplace_back(o.key, unquoted(o.value));

@@ -55,17 +55,24 @@ ParamSpec spectrum_file(std::string key, std::string si_unit, std::string exampl
   return p;
 }
 
+ParamSpec quantity_or_number(std::string key, const std::string& si_unit, std::string example_number) {
+  if (units::dimension_of(si_unit) == "1") return number(std::move(key), std::move(example_number));
+  return quantity(std::move(key), si_unit, example_number + " " + si_unit);
+}
+
 static std::string number_text(double v) { return fmt::format("{:g}", v); }
 
 std::string ParamSpec::range_text() const {
   if (type == ParamType::choice) return "one of " + join(choices);
   const std::string unit = (type == ParamType::quantity && si_unit != "1") ? " " + si_unit : "";
   const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
+  if (finite_only && !has_min && !has_max) return "a finite value";
+  const std::string finite_note = finite_only ? ", finite" : "";
   if (has_min && has_max)
     return fmt::format("in {}{}, {}{}{}", min_exclusive ? "(" : "[", number_text(min), number_text(max),
                        max_exclusive ? ")" : "]", unit);
-  if (has_min) return fmt::format("{} {}{}", min_exclusive ? ">" : ">=", number_text(min), unit);
-  if (has_max) return fmt::format("{} {}{}", max_exclusive ? "<" : "<=", number_text(max), unit);
+  if (has_min) return fmt::format("{} {}{}{}", min_exclusive ? ">" : ">=", number_text(min), unit, finite_note);
+  if (has_max) return fmt::format("{} {}{}{}", max_exclusive ? "<" : "<=", number_text(max), unit, finite_note);
   return {};
 }
 
@@ -83,7 +90,7 @@ std::string ParamSpec::expected_text() const {
 }
 
 bool ParamSpec::in_range(double v) const {
-  if (std::isnan(v)) return false;
+  if (std::isnan(v) || (finite_only && !std::isfinite(v))) return false;
   if (min_exclusive ? !(v > min) : !(v >= min)) return false;
   if (max_exclusive ? !(v < max) : !(v <= max)) return false;
   return true;
@@ -95,7 +102,9 @@ Params::Params(std::string section, std::string plugin, const Schema* schema)
   for (std::size_t i = 0; i < schema_->size(); ++i) entries_[i].spec = &(*schema_)[i];
 }
 
-std::string Params::context() const { return fmt::format("{} (plugin \"{}\")", section_, plugin_); }
+std::string Params::context() const {
+  return plugin_.empty() ? section_ : fmt::format("{} (plugin \"{}\")", section_, plugin_);
+}
 
 const Params::Entry& Params::entry(std::string_view key) const {
   for (const auto& e : entries_)
@@ -160,11 +169,12 @@ std::optional<std::string> resolve_data_file(const std::string& name, const std:
   return std::nullopt;
 }
 
-void assign_param(Params& params, Params::Entry& entry, const ConfigValue& value, const ValidationContext& context) {
+namespace {
+
+// One value of a key: the whole value of a scalar key, one item of a list or pair.
+void assign_one(Params& params, Params::Entry& entry, const ConfigValue& value, const ValidationContext& context,
+                const std::string& subject) {
   const ParamSpec& spec = *entry.spec;
-  entry.where = value.where;
-  entry.as_written = value.as_toml();
-  const std::string subject = spec.key + " = " + entry.as_written;
   auto fail = [&](const std::string& problem) {
     return InputError(value.where, params.context(), subject, problem);
   };
@@ -238,6 +248,30 @@ void assign_param(Params& params, Params::Entry& entry, const ConfigValue& value
       break;
     }
   }
+}
+
+}  // namespace
+
+void assign_param(Params& params, Params::Entry& entry, const ConfigValue& value, const ValidationContext& context) {
+  const ParamSpec& spec = *entry.spec;
+  entry.where = value.where;
+  entry.as_written = value.as_toml();
+  const std::string subject = spec.key + " = " + entry.as_written;
+  if (spec.shape == ParamShape::scalar) {
+    assign_one(params, entry, value, context, subject);
+  } else {
+    const bool array = value.type == ConfigValue::Type::array;
+    if (spec.shape == ParamShape::pair && (!array || value.items.size() != 2))
+      throw InputError(value.where, params.context(), subject, "expected two values: [low, high]");
+    if (array && value.items.empty())
+      throw InputError(value.where, params.context(), subject, fmt::format("expected one or more values, e.g. [{}]", spec.example));
+    entry.numbers.clear(), entry.texts.clear();
+    for (const ConfigValue& item : array ? value.items : std::vector<ConfigValue>{value}) {
+      assign_one(params, entry, item, context, subject);
+      entry.numbers.push_back(entry.number);
+      entry.texts.push_back(entry.text);
+    }
+  }
   entry.present = true;
 }
 
@@ -246,7 +280,7 @@ Params validate_section(const Schema& schema, const ConfigValue& table, const Va
   std::vector<std::string> accepted;
   for (const auto& spec : schema) accepted.push_back(spec.key);
   for (const auto& [key, value] : table.members) {
-    if (key == "plugin") continue;
+    if (key == "plugin" && !context.plugin.empty()) continue;  // a stage's plugin key was read by the host
     bool known = false;
     for (auto& entry : params.entries()) {
       if (entry.spec->key != key) continue;

@@ -3,6 +3,7 @@
 #include "radchain/chain.hpp"
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
+#include "radchain/sensor_file.hpp"
 #include "radchain/units.hpp"
 
 #include <algorithm>
@@ -17,17 +18,6 @@ namespace {
 const std::vector<std::string> stage_sections = {"source", "atmosphere", "target", "optics", "detector"};
 const std::vector<std::string> top_level_keys = {"sensor", "platform", "source", "target", "atmosphere", "optics",
                                                  "detector", "criteria", "solve", "expected"};
-const std::vector<std::string> sensor_keys = {"name", "description", "reference", "notes"};
-
-Kind kind_of_section(const std::string& section) {
-  if (section == "platform") return Kind::platform;
-  if (section == "source") return Kind::source;
-  if (section == "target") return Kind::target;
-  if (section == "atmosphere") return Kind::atmosphere;
-  if (section == "optics") return Kind::optics;
-  if (section == "detector") return Kind::detector;
-  return Kind::criterion;
-}
 
 void apply_override(ConfigValue& root, const Override& o) {
   const SourceLocation where{"--set", 0, 0};
@@ -72,40 +62,6 @@ std::string display_unit_of_example(const ParamSpec& spec) {
     return units::split_quantity(example).unit;
   } catch (...) {
     return {};
-  }
-}
-
-// A quantity or number written for a parameter (solve bracket) or a result (expected value), in `si_unit`.
-double scalar_in(const ConfigValue& value, const std::string& si_unit, const std::string& context,
-                 const std::string& subject, std::string* unit_written = nullptr) {
-  const bool dimensionless = units::dimension_of(si_unit) == "1";
-  const std::string expected = dimensionless ? std::string("expected a plain number (the result has no unit)")
-                                             : fmt::format("expected {} (a unit convertible to {})",
-                                                           units::dimension_name(si_unit), si_unit);
-  if (value.is_number()) {
-    if (!dimensionless)
-      throw InputError(value.where, context, subject + " = " + value.as_toml(),
-                       fmt::format("a bare number has no unit: expected {}", units::dimension_name(si_unit)));
-    return value.number();
-  }
-  if (value.type != ConfigValue::Type::string)
-    throw InputError(value.where, context, subject + " = " + value.as_toml(), "expected a number with its unit, e.g. \"832 mm\"");
-  auto fail = [&](const std::string& problem) {
-    return InputError(value.where, context, subject + " = " + value.as_toml(), problem);
-  };
-  units::ParsedQuantity q;
-  try {
-    q = units::split_quantity(value.string_value);
-  } catch (const std::invalid_argument&) {
-    throw fail("does not start with a number: " + expected);
-  }
-  if (unit_written) *unit_written = q.unit;
-  try {
-    return q.number * units::conversion(q.unit.empty() ? "1" : q.unit, si_unit).factor;
-  } catch (const std::invalid_argument&) {
-    throw fail(fmt::format("unknown unit \"{}\": {}", q.unit, expected));
-  } catch (const std::domain_error&) {
-    throw fail(expected);
   }
 }
 
@@ -188,20 +144,9 @@ Chain load_sensor(const std::string& path, const std::vector<Override>& override
   chain.sensor_file = path;
   if (const ConfigValue* sensor = root.find("sensor")) {
     require_table(*sensor, "sensor");
-    for (const auto& [key, value] : sensor->members) {
-      bool known = false;
-      for (const auto& k : sensor_keys) known = known || k == key;
-      if (!known) {
-        const std::string near = nearest_match(key, sensor_keys);
-        throw InputError(value.where, "sensor", key,
-                         fmt::format("unknown key{}; accepted keys: {}", near.empty() ? "" : " (did you mean \"" + near + "\"?)",
-                                     join(sensor_keys)));
-      }
-      if (value.type != ConfigValue::Type::string)
-        throw InputError(value.where, "sensor", key + " = " + value.as_toml(), "expected a string");
-    }
-    if (const ConfigValue* name = sensor->find("name")) chain.sensor_name = name->string_value;
-    if (const ConfigValue* description = sensor->find("description")) chain.description = description->string_value;
+    const Params params = validate_section(sensor_table_schema(), *sensor, ValidationContext{path, "sensor", ""});
+    chain.sensor_name = params.text("name");
+    chain.description = params.text("description");
   }
   if (chain.sensor_name.empty()) chain.sensor_name = path;
 
@@ -231,56 +176,46 @@ Chain load_sensor(const std::string& path, const std::vector<Override>& override
     for (const auto& entry : solves->items) {
       if (entry.type != ConfigValue::Type::table)
         throw InputError(entry.where, "[[solve]]", "", "expected a table of unknown, criterion and bracket, found " + entry.type_name());
+      const ValidationContext context{path, "[[solve]]", ""};
+      // The bracket's unit is the unknown's: find the unknown first, then validate the entry against its schema.
+      const ConfigValue* unknown = entry.find("unknown");
+      if (!unknown || unknown->type != ConfigValue::Type::string) {
+        const Schema plain = solve_entry_schema();
+        const ParamSpec& spec_of_unknown = plain.front();
+        throw InputError(unknown ? unknown->where : entry.where, "[[solve]]", unknown ? "unknown = " + unknown->as_toml() : "unknown",
+                         fmt::format("{}{} ({})", unknown ? "" : "missing required key: ", spec_of_unknown.expected_text(),
+                                     spec_of_unknown.doc));
+      }
       SolveSpec spec;
       spec.where = entry.where;
-      for (const auto& [key, value] : entry.members) {
-        if (key != "unknown" && key != "criterion" && key != "bracket")
-          throw InputError(value.where, "[[solve]]", key, "unknown key; accepted keys: unknown, criterion, bracket");
-      }
-      const ConfigValue* unknown = entry.find("unknown");
-      if (!unknown || unknown->type != ConfigValue::Type::string)
-        throw InputError(entry.where, "[[solve]]", "unknown", "missing required key: the parameter to solve for, e.g. \"optics.aperture\"");
       spec.unknown = unknown->string_value;
       try {
         (void)chain.parameter(spec.unknown);
       } catch (const std::logic_error&) {  // no such section or key (std::out_of_range), or not numeric
-        throw InputError(unknown->where, "[[solve]]", "unknown = " + unknown->as_toml(),
-                         numeric_parameters_text(chain, spec.unknown));
+        throw InputError(unknown->where, "[[solve]]", "unknown = " + unknown->as_toml(), numeric_parameters_text(chain, spec.unknown));
       }
+      const auto dot = spec.unknown.rfind('.');
+      const ParamSpec& pspec = *chain.slot(spec.unknown.substr(0, dot)).params->entry(spec.unknown.substr(dot + 1)).spec;
+      const Schema schema = solve_entry_schema(&pspec);
+      const Params params = validate_section(schema, entry, context);
       // criterion = "energy", or several: criterion = ["energy", "matching"] (the value satisfying all binds).
-      const ConfigValue* criterion = entry.find("criterion");
-      std::vector<const ConfigValue*> names;
-      if (criterion && criterion->type == ConfigValue::Type::string) names.push_back(criterion);
-      if (criterion && criterion->type == ConfigValue::Type::array)
-        for (const auto& item : criterion->items) names.push_back(&item);
-      if (!criterion || names.empty())
-        throw InputError(criterion ? criterion->where : entry.where, "[[solve]]", "criterion",
-                         fmt::format("missing required key: one of the [criteria.*] names, or a list of them: {}",
-                                     criteria.empty() ? "none defined" : join(criteria)));
-      for (const ConfigValue* name : names) {
-        if (name->type != ConfigValue::Type::string || std::find(criteria.begin(), criteria.end(), name->string_value) == criteria.end()) {
-          const std::string near = nearest_match(name->string_value, criteria);
-          throw InputError(name->where, "[[solve]]", "criterion = " + criterion->as_toml(),
+      const Params::Entry& criterion = params.entry("criterion");
+      for (const std::string& name : criterion.texts) {
+        if (std::find(criteria.begin(), criteria.end(), name) == criteria.end()) {
+          const std::string near = nearest_match(name, criteria);
+          throw InputError(criterion.where, "[[solve]]", "criterion = " + criterion.as_written,
                            fmt::format("no such criterion{}; defined: {}", near.empty() ? "" : " (did you mean \"" + near + "\"?)",
                                        criteria.empty() ? "none" : join(criteria)));
         }
-        spec.criteria.push_back(name->string_value);
+        spec.criteria.push_back(name);
       }
-      const auto dot = spec.unknown.rfind('.');
-      const Params::Entry& parameter = chain.slot(spec.unknown.substr(0, dot)).params->entry(spec.unknown.substr(dot + 1));
-      const ParamSpec& pspec = *parameter.spec;
       spec.lo = pspec.min, spec.hi = pspec.max;
       if (pspec.min_exclusive) spec.lo = std::nextafter(pspec.min, pspec.max);
       if (pspec.max_exclusive) spec.hi = std::nextafter(pspec.max, pspec.min);
-      if (const ConfigValue* bracket = entry.find("bracket")) {
-        if (bracket->type != ConfigValue::Type::array || bracket->items.size() != 2)
-          throw InputError(bracket->where, "[[solve]]", "bracket = " + bracket->as_toml(), "expected two values, e.g. [\"1 cm\", \"2 m\"]");
-        spec.lo = scalar_in(bracket->items[0], pspec.si_unit, "[[solve]]", "bracket");
-        spec.hi = scalar_in(bracket->items[1], pspec.si_unit, "[[solve]]", "bracket");
-      }
+      if (params.has("bracket")) spec.lo = params.entry("bracket").numbers[0], spec.hi = params.entry("bracket").numbers[1];
       if (!std::isfinite(spec.lo) || !std::isfinite(spec.hi) || !(spec.hi > spec.lo))
         throw InputError(entry.where, "[[solve]]", spec.unknown,
-                         "needs a bracket = [low, high] (the parameter's range is open): e.g. bracket = [\"1 cm\", \"2 m\"]");
+                         "needs a bracket = [low, high] with low < high (the parameter's range is open): e.g. bracket = [\"1 cm\", \"2 m\"]");
       solved_units.emplace_back(spec.unknown, display_unit_of_example(pspec));
       chain.solves.push_back(spec);
     }
@@ -306,43 +241,72 @@ Chain load_sensor(const std::string& path, const std::vector<Override>& override
     for (std::size_t i = 0; i < chain.results().size(); ++i) names.push_back(chain.results().info(i).name);
     for (const auto& [name, spec] : expected->members) {
       const auto id = chain.results().find(name);
-      if (!id) {
+      if (!id) {  // the entry's name, not a key in it: the results of this chain are the accepted names
         const std::string near = nearest_match(name, names);
         throw InputError(spec.where, "[expected]", name,
                          fmt::format("no such result{}; see `radchain run` for the names", near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
       }
       const ResultInfo& info = chain.results().info(*id);
+      if (spec.type != ConfigValue::Type::table)
+        throw InputError(spec.where, "[expected]", name,
+                         "expected { value = ..., tolerance = ... } (or rel_tolerance), with units where the result has one");
+      const Schema schema = expected_entry_schema(info.si_unit);
+      const Params params = validate_section(schema, spec, ValidationContext{path, "[expected] " + name, ""});
+      if (!params.has("tolerance") && !params.has("rel_tolerance"))
+        throw InputError(spec.where, "[expected] " + name, "tolerance", "missing required key: tolerance or rel_tolerance");
       Expectation e;
       e.result = name;
       e.where = spec.where;
-      const std::string context = "[expected]";
-      if (spec.type != ConfigValue::Type::table)
-        throw InputError(spec.where, context, name,
-                         "expected { value = ..., tolerance = ... } (or rel_tolerance), with units where the result has one");
-      for (const auto& [key, value] : spec.members)
-        if (key != "value" && key != "follows" && key != "tolerance" && key != "rel_tolerance" && key != "source")
-          throw InputError(value.where, context, name + "." + key, "unknown key; accepted keys: value, follows, tolerance, rel_tolerance, source");
-      const ConfigValue* value = spec.find("value");
-      if (!value) throw InputError(spec.where, context, name, "missing required key: value");
-      e.value_si = scalar_in(*value, info.si_unit, context, name + ".value", &e.display_unit);
-      e.as_written = value->type == ConfigValue::Type::string ? value->string_value : value->as_toml();
-      const ConfigValue* tolerance = spec.find("tolerance");
-      const ConfigValue* rel = spec.find("rel_tolerance");
-      if (!tolerance && !rel) throw InputError(spec.where, context, name, "missing required key: tolerance or rel_tolerance");
-      if (tolerance) e.tolerance_si = std::abs(scalar_in(*tolerance, info.si_unit, context, name + ".tolerance"));
-      if (rel) {
-        if (!rel->is_number()) throw InputError(rel->where, context, name + ".rel_tolerance", "expected a number, e.g. 0.01");
-        e.rel_tolerance = std::abs(rel->number());
+      e.value_si = params.get("value");
+      const Params::Entry& value = params.entry("value");
+      e.as_written = value.as_written.size() >= 2 && value.as_written.front() == '"'
+                         ? value.as_written.substr(1, value.as_written.size() - 2) : value.as_written;
+      if (units::dimension_of(info.si_unit) != "1") e.display_unit = units::split_quantity(e.as_written).unit;
+      e.tolerance_si = params.maybe("tolerance").value_or(0.0);
+      e.rel_tolerance = params.maybe("rel_tolerance").value_or(0.0);
+      if (params.has("follows")) {
+        e.follows_si = params.get("follows");
+        const std::string& written = params.entry("follows").as_written;
+        e.follows_as_written = written.size() >= 2 && written.front() == '"' ? written.substr(1, written.size() - 2) : written;
       }
-      if (const ConfigValue* follows = spec.find("follows")) {
-        e.follows_si = scalar_in(*follows, info.si_unit, context, name + ".follows");
-        e.follows_as_written = follows->type == ConfigValue::Type::string ? follows->string_value : follows->as_toml();
-      }
-      if (const ConfigValue* source = spec.find("source")) e.source = source->string_value;
+      e.source = params.text("source");
       chain.expected.push_back(e);
     }
   }
   return chain;
+}
+
+const Schema& sensor_table_schema() {
+  static const Schema schema = {
+      text("name", "MSX SBV (Pan 2010, Table 1)").described("the instrument's name in reports (default: the file path)"),
+      text("description", "space-based visible surveillance camera").described("one line on what it is"),
+      text("reference", "Pan et al. 2010, Tables 1-2").described("where its parameters come from"),
+      text("notes", "aperture from Table 1").described("anything else a reader should know"),
+  };
+  return schema;
+}
+
+Schema solve_entry_schema(const ParamSpec* unknown) {
+  ParamSpec bracket = unknown ? quantity_or_number("bracket", unknown->si_unit, "1") : number("bracket", "1");
+  if (unknown && unknown->type == ParamType::quantity) bracket.example = "\"1 " + unknown->si_unit + "\"";
+  return {
+      text("unknown", "optics.aperture").needed().described("the numeric parameter to solve for: <section>.<key>"),
+      text("criterion", "energy").as_list().needed()
+          .described("the [criteria.<name>] whose margin is driven to 0, or a list of them (the one that binds is kept)"),
+      std::move(bracket).as_pair().finite()
+          .described("[low, high] in the unknown's unit (default: the parameter's accepted range)"),
+  };
+}
+
+Schema expected_entry_schema(const std::string& si_unit) {
+  return {
+      quantity_or_number("value", si_unit, "832").needed().finite().described("the published value, in the result's unit"),
+      quantity_or_number("follows", si_unit, "833.1").finite()
+          .described("an erratum: what the source's own formula and inputs give (checked instead of value; docs/ explain)"),
+      quantity_or_number("tolerance", si_unit, "1").at_least(0).finite().described("absolute tolerance"),
+      number("rel_tolerance", "0.01").at_least(0).finite().described("relative tolerance (either or both)"),
+      text("source", "Kolobrodov 1996, p. 4").described("where the value is published (document, table or page)"),
+  };
 }
 
 }  // namespace radchain

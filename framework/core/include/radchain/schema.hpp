@@ -23,9 +23,14 @@ enum class ParamType {
   spectrum,  // a CSV spectrum file (see spectrum_csv.hpp), loaded and unit-checked during validation
 };
 
+// How many values a key takes: one (every plugin key), a list of one or more (criterion = ["energy", "matching"]
+// also accepts a single string), or exactly two (bracket = ["1 cm", "2 m"]).
+enum class ParamShape { scalar, list, pair };
+
 struct ParamSpec {
   std::string key;
   ParamType type = ParamType::number;
+  ParamShape shape = ParamShape::scalar;
   std::string si_unit;  // quantity: SI unit of the stored value ("m"); spectrum: unit of its values ("1")
   std::string example;  // a valid value as TOML text in a sensor file, quotes included: "\"15 cm\"", 0.27
   std::optional<std::string> default_value;  // the value without TOML quotes ("0 e-/s"); none + !required = optional
@@ -36,6 +41,7 @@ struct ParamSpec {
   std::vector<std::string> choices;
   std::string doc;
   bool spectral = false;  // changing it re-runs the chain's spectral phase
+  bool finite_only = false;  // ±inf refused (NaN always is)
 
   // Fluent setters, so a schema reads like a table.
   ParamSpec&& fallback(std::string value) && { default_value = std::move(value); return std::move(*this); }
@@ -46,6 +52,10 @@ struct ParamSpec {
   ParamSpec&& below(double v) && { max = v; max_exclusive = true; return std::move(*this); }
   ParamSpec&& described(std::string text) && { doc = std::move(text); return std::move(*this); }
   ParamSpec&& affects_spectrum() && { spectral = true; return std::move(*this); }
+  ParamSpec&& as_list() && { shape = ParamShape::list; return std::move(*this); }
+  ParamSpec&& as_pair() && { shape = ParamShape::pair; return std::move(*this); }
+  // Refuses ±infinity (and NaN): a tolerance of inf would let a check pass anything.
+  ParamSpec&& finite() && { finite_only = true; return std::move(*this); }
 
   std::string range_text() const;     // "> 0 m", "in [0, 1]", "one of e490, wehrli"
   std::string expected_text() const;  // what the error line says is expected
@@ -72,6 +82,8 @@ class Params {
     bool present = false;       // given or defaulted
     double number = 0.0;        // quantity / number / integer, SI
     std::string text;           // text / choice / spectrum path as written
+    std::vector<double> numbers;      // list / pair shapes of numbers and quantities (SI)
+    std::vector<std::string> texts;   // list / pair shapes of texts and choices
     bool flag = false;
     std::shared_ptr<const Spectrum> spectrum;
     SourceLocation where;
@@ -112,9 +124,13 @@ class Params {
 // Everything validation needs besides the section table.
 struct ValidationContext {
   std::string sensor_file;            // for messages and relative spectrum paths
-  std::string section;                // "optics", "criteria.detection"
-  std::string plugin;                 // "telescope"
+  std::string section;                // "optics", "criteria.detection"; "[[solve]]", "[expected]" for the file's own tables
+  std::string plugin;                 // "telescope"; "" for the file's own tables (the section alone names them)
 };
+
+// A quantity for a dimensional SI unit, else a plain number: the schema entry for a value whose unit is known only
+// when the file is read (a [[solve]] bracket takes the unit of its unknown, an [expected] value that of its result).
+ParamSpec quantity_or_number(std::string key, const std::string& si_unit, std::string example_number);
 
 // Validates one section table against a schema (the `plugin` key itself is skipped). Throws InputError.
 Params validate_section(const Schema& schema, const ConfigValue& table, const ValidationContext& context);

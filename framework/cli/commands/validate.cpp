@@ -1,0 +1,61 @@
+// `radchain validate` (in the imaging module): the closed-loop checks, render and measure against the model.
+#include "imaging_common.hpp"
+#include "../overrides.hpp"
+
+#include "radchain/imaging/render.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <utility>
+
+namespace radchain::cli {
+
+using namespace radchain::render;
+
+int validate_command(const ValidateCommand& c) {
+  Chain chain = load_sensor_of(c.sensor);
+  const Report report = chain.run();
+  bool ok = true;
+  auto verdict = [&](bool passed) {
+    ok = ok && passed;
+    return passed ? "ok  " : "FAIL";
+  };
+  if (is_point_target_sensor(chain)) {
+    SpaceFrameOptions frame;
+    apply_frame_geometry(frame, c.geometry);
+    DetectionCheckOptions d;
+    d.trials = c.trials;
+    d.seed = c.seed;
+    d.threshold_sigma = c.threshold_sigma;
+    const DetectionCheck check = check_detection(chain, report, frame, d);
+    fmt::print("{}: detection at the limiting magnitude {:.4f} (S = {:.4g} e-, n = {:.4g} e-, σ₀ = {:.4g} e-, SNR = {:.4g}, "
+               "window {}×{}, threshold γ = {:.4g} σ₀, at a level between two window sums {:.4g} σ₀)\n",
+               c.sensor.sensor, check.magnitude, check.signal_electrons, check.noise_electrons, check.noise_only_electrons, check.snr,
+               check.window, check.window, check.threshold_sigma, check.effective_threshold_sigma);
+    fmt::print("  {} rendered window signal {:.5g} e- vs chain {:.5g} e-\n",
+               verdict(std::abs(check.rendered_signal_electrons / check.signal_electrons - 1.0) <= 0.01),
+               check.rendered_signal_electrons, check.signal_electrons);
+    for (const auto& [name, rate] : {std::pair{"P_d ", check.detection}, std::pair{"P_fa", check.false_alarm}})
+      fmt::print("  {} {} measured {:.6f} ({} of {}), Gaussian criterion {:.6f} (z = {:+.2f}), renderer's exact law {:.6f} (z = {:+.2f})\n",
+                 verdict(std::abs(rate.z_predicted()) <= c.max_z), name, rate.measured, rate.count, rate.trials, rate.predicted,
+                 rate.z_predicted(), rate.exact, rate.z_exact());
+    const FlatFieldCheck flat = check_space_flat_field(chain, report, frame, c.size, c.seed);
+    fmt::print("  {} flat field: measured SNR {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.5g} vs {:.5g} e-\n",
+               verdict(flat.passed(c.max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
+               flat.measured_noise, flat.predicted_noise);
+  } else {
+    EarthSceneOptions scene;
+    const EdgeCheck edge = check_edge_mtf(chain, report, scene);
+    fmt::print("{}: slanted edge at {:.2f}°: MTF at Nyquist measured {:.4f}, model {:.4f}; max deviation up to Nyquist {:.2f} %\n",
+               c.sensor.sensor, edge.angle_deg, edge.mtf_at_nyquist_measured, edge.mtf_at_nyquist_model, 100 * edge.max_relative_error);
+    fmt::print("  {} edge MTF within {:.0f} %\n", verdict(edge.passed()), 100 * edge.tolerance);
+    const FlatFieldCheck flat = check_earth_flat_field(chain, report, scene, c.size, c.seed);
+    fmt::print("  {} flat fields: measured SNR of Δρ {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.4g} vs {:.4g} J m-2\n",
+               verdict(flat.passed(c.max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
+               flat.measured_noise, flat.predicted_noise);
+  }
+  return ok ? 0 : 1;
+}
+
+}  // namespace radchain::cli

@@ -1,0 +1,44 @@
+// The options that several subcommands share, declared once (the structs are in options.hpp).
+#include "options.hpp"
+
+#include <CLI/CLI.hpp>
+
+namespace radchain::cli {
+
+void add_sets(CLI::App* command, std::vector<std::string>& sets, const std::string& help) {
+  command->add_option("--set", sets, help);
+}
+
+void add_sensor(CLI::App* command, SensorArgs& sensor, const std::string& help) {
+  command->add_option("sensor", sensor.sensor, "sensor TOML file")->required();
+  add_sets(command, sensor.sets, help);
+}
+
+void add_no_solve(CLI::App* command, bool& no_solve) {
+  command->add_flag("--no-solve", no_solve, "evaluate forward only: skip the [[solve]] entries (the unknowns keep their values)");
+}
+
+void add_output(CLI::App* command, Output& output, const std::string& formats) {
+  command->add_option("--out", output.out, "write to this file instead of stdout (.csv/.json/.txt also set the format)");
+  command->add_option("--format", output.format, formats);
+}
+
+void add_batch(CLI::App* command, Batch& batch) {
+  command->add_option("--shard", batch.shard, "run part k of n of the job (k/n) and write a shard file for `radchain merge`");
+  command->add_option("--shard-order", batch.shard_order, "how points are dealt to shards: block (contiguous) or round-robin");
+  command->add_option("--threads", batch.threads, "threads to use (default: all cores)");
+}
+
+void add_seed(CLI::App* command, std::uint64_t& seed) {
+  command->add_option("--seed", seed, "noise seed (same seed, same image)");
+}
+
+void add_frame_geometry(CLI::App* command, FrameGeometry& geometry) {
+  command->add_option("--focal-length", geometry.focal_length, "when the sensor has none, e.g. \"45 cm\"");
+  command->add_option("--pixel-pitch", geometry.pixel_pitch, "when the sensor has none, e.g. \"27 um\"");
+  command->add_option("--psf", geometry.psf, "pixel, airy or gaussian");
+  command->add_option("--psf-wavelength", geometry.psf_wavelength, "Airy wavelength, e.g. \"0.6 um\"");
+  command->add_option("--psf-fwhm", geometry.psf_fwhm, "Gaussian FWHM, e.g. \"20 um\"");
+}
+
+}  // namespace radchain::cli

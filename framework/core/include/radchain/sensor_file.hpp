@@ -1,0 +1,20 @@
+#pragma once
+// The sensor file's own tables, validated by the same Schema machinery as a plugin's section, so that unknown
+// and missing keys, units and ranges get the same located errors and `radchain describe` can show them:
+//   [sensor]    name, description, reference, notes
+//   [[solve]]   unknown, criterion (one name or a list), bracket (two values in the unknown's unit)
+//   [expected]  "<result>" = { value, follows, tolerance, rel_tolerance, source } in the result's unit
+#include "radchain/schema.hpp"
+
+#include <string>
+
+namespace radchain {
+
+const Schema& sensor_table_schema();
+// A [[solve]] entry. The bracket's unit is the unknown's: `unknown` is that parameter's spec (nullptr: a plain
+// number, as the schema `radchain describe solve` shows before any unknown is known).
+Schema solve_entry_schema(const ParamSpec* unknown = nullptr);
+// An [expected] entry for a result whose SI unit is `si_unit` ("1": plain numbers).
+Schema expected_entry_schema(const std::string& si_unit = "1");
+
+}  // namespace radchain
