@@ -101,6 +101,54 @@ TEST_F(Compare, CsvHasInputsThenResults) {
   EXPECT_NE(r.out.find("\nresult,optics.aperture,15,20,cm,+5,+33.3,differs\n"), std::string::npos) << r.out;
 }
 
+TEST_F(Compare, SolvedUnknownsComeFirst) {
+  const Comparison c = compare(load_compare_input(sbv_file), load_compare_input(variant_.string()));
+  ASSERT_FALSE(c.results.empty());
+  EXPECT_EQ(c.results.front().name, "target.magnitude");
+  const CliResult r = run_cli(scratch_, "compare '" + sbv_file + "' '" + variant_.string() + "' --format csv");
+  const auto first_result = r.out.find("\nresult,");
+  ASSERT_NE(first_result, std::string::npos) << r.out;
+  EXPECT_EQ(r.out.compare(first_result, 25, "\nresult,target.magnitude,"), 0) << r.out;
+}
+
+// The same pupil written as "150 mm": the inputs differ as written, the results by rounding at most, and
+// nothing is reported as differing.
+TEST_F(Compare, RoundingIsNotADifference) {
+  const fs::path mm = scratch_ / "sbv-mm.toml";
+  write_text(mm, sbv_with("aperture = \"15 cm\"", "aperture = \"150 mm\""));
+  const CliResult r = run_cli(scratch_, "compare '" + sbv_file + "' '" + mm.string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("differs"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" 0 differ by more than 1e-09"), std::string::npos) << r.out;
+}
+
+TEST(CompareStatus, MovesWithinTheRoundingToleranceAreOk) {
+  Comparison c;
+  c.results.push_back(ResultDifference{"a.same", "m", 1, 2.0, 2.0, true, true});
+  c.results.push_back(ResultDifference{"a.rounding", "m", 1, 2.0, 2.0 * (1 + 1e-12), true, true});
+  c.results.push_back(ResultDifference{"a.moved", "m", 1, 2.0, 2.0 * (1 + 1e-6), true, true});
+  const std::string text = format_comparison_text(c);
+  EXPECT_NE(text.find("3 results, 1 differ by more than 1e-09"), std::string::npos) << text;
+  std::ostringstream csv;
+  write_comparison(c, TableFormat::csv, csv);
+  EXPECT_NE(csv.str().find("result,a.same,2,2,m,+0,+0,same\n"), std::string::npos) << csv.str();
+  EXPECT_NE(csv.str().find("result,a.rounding,2,2,m,+2e-12,+1e-10,ok\n"), std::string::npos) << csv.str();
+  EXPECT_NE(csv.str().find(",differs\n"), std::string::npos) << csv.str();
+  // An explicit tolerance still decides: 0 makes the rounding exceed.
+  std::ostringstream strict;
+  write_comparison(c, TableFormat::csv, strict, 0.0);
+  EXPECT_NE(strict.str().find("result,a.rounding,2,2,m,+2e-12,+1e-10,EXCEEDS\n"), std::string::npos) << strict.str();
+  EXPECT_EQ(count_exceeding(c, 0.0), 2u);
+}
+
+TEST_F(Compare, NoSolveComparesForward) {
+  const CliResult r = run_cli(scratch_, "compare '" + sbv_file + "' '" + variant_.string() + "' --no-solve --format csv");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  // Both at the magnitude written in the file; the signal grows with the pupil and the QE instead.
+  EXPECT_NE(r.out.find("\nresult,target.magnitude,15.5,15.5,,+0,+0,same\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\nresult,detector.signal_electrons,"), std::string::npos) << r.out;
+}
+
 TEST(CompareInputs, BadTolerance) {
   EXPECT_THROW(parse_tolerance("abc"), InputError);
   EXPECT_THROW(parse_tolerance("-1"), InputError);

@@ -1,0 +1,107 @@
+// The command line itself: --version, the plugins header, --no-solve, the warning when --set names a solved
+// unknown, and the imaging commands living in a module the executable loads only for them.
+#include "cli_helpers.hpp"
+#include "radchain/version.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+using namespace radchain;
+using namespace radchain::test;
+
+double result_si(const nlohmann::json& report, const std::string& name) {
+  for (const auto& r : report["results"])
+    if (r["name"] == name) return r["value_si"].get<double>();
+  throw std::out_of_range(name);
+}
+
+TEST(CliVersion, PrintsTheFrameworkVersionAndThePluginAbi) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "--version");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, fmt::format("radchain {} (plugin ABI {})\n", framework_version, plugin_abi_version));
+}
+
+TEST(CliPlugins, HeaderLineNamesThePluginAbi) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "plugins");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')), fmt::format("radchain {}, plugin ABI {}", framework_version, plugin_abi_version));
+}
+
+TEST(CliNoSolve, EvaluatesAtTheValueGivenWithoutSolving) {
+  Scratch scratch;
+  const CliResult solved = run_cli(scratch, "run '" + sbv_file + "' --format json");
+  ASSERT_EQ(solved.exit_code, 0) << solved.err;
+  const CliResult forward = run_cli(scratch, "run '" + sbv_file + "' --no-solve --set target.magnitude=14 --format json");
+  EXPECT_EQ(forward.err, "");  // nothing overwrites the magnitude: no warning
+  const auto a = nlohmann::json::parse(solved.out), b = nlohmann::json::parse(forward.out);
+  EXPECT_EQ(a["solves"].size(), 1u);
+  EXPECT_EQ(b["solves"].size(), 0u);
+  EXPECT_EQ(result_si(b, "target.magnitude"), 14.0);
+  EXPECT_NEAR(result_si(a, "detector.snr"), 5.0, 1e-9);  // the solve drives SNR to the threshold
+  EXPECT_GT(result_si(b, "detector.snr"), 5.0);          // 1.56 magnitudes brighter than the limit
+  // The [expected] limiting magnitude (15.55 ± 0.05) is not met at 14: the exit code still says so.
+  EXPECT_EQ(forward.exit_code, 1);
+}
+
+TEST(CliNoSolve, WithoutSetTheFileValueIsUsed) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "run '" + sbv_file + "' --no-solve --format json");
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(result_si(j, "target.magnitude"), 15.5);  // the start value written in the file
+}
+
+TEST(CliSolvedOverride, WarnsOnceOnStderrAndKeepsTheExitCode) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "run '" + sbv_file + "' --set target.magnitude=14");
+  EXPECT_EQ(r.exit_code, 0);  // the solve still finds the limit and the [expected] check holds
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("radchain: warning: --set target.magnitude=14", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("--no-solve"), std::string::npos) << r.err;
+  // A key no solve touches: no warning.
+  const CliResult quiet = run_cli(scratch, "run '" + sbv_file + "' --set optics.transmittance=0.5");
+  EXPECT_EQ(quiet.err, "");
+}
+
+TEST(CliSolvedOverride, CompareWarnsToo) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "compare '" + sbv_file + "' '" + sbv_file + "' --set target.magnitude=14");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("radchain: warning: --set target.magnitude=14", 0), 0u) << r.err;
+}
+
+// The executable links neither OpenImageIO nor FFTW: render, validate and mtf load them through the module.
+TEST(CliImagingModule, TheExecutableLinksNoImagingLibraries) {
+  Scratch scratch;
+  const fs::path listing = scratch / "ldd.txt";
+  ASSERT_EQ(std::system(("ldd '" RADCHAIN_CLI "' >'" + listing.string() + "'").c_str()), 0);
+  const std::string libraries = read_text(listing);
+  EXPECT_EQ(libraries.find("libOpenImageIO"), std::string::npos) << libraries;
+  EXPECT_EQ(libraries.find("libfftw3"), std::string::npos) << libraries;
+  EXPECT_EQ(libraries.find("libradchain-imaging"), std::string::npos) << libraries;
+}
+
+// A copy of the executable without the module next to it: the other commands run, the imaging ones fail
+// with one line and exit 2.
+TEST(CliImagingModule, MissingModuleIsOneLineAndExitTwo) {
+  Scratch scratch;
+  const fs::path copy = scratch / "bin" / "radchain";
+  fs::create_directories(copy.parent_path());
+  fs::copy_file(RADCHAIN_CLI, copy);
+  auto run_copy = [&](const std::string& arguments) {
+    const fs::path out = scratch / "copy-out.txt", err = scratch / "copy-err.txt";
+    const int status = std::system(("'" + copy.string() + "' " + arguments + " >'" + out.string() + "' 2>'" + err.string() + "'").c_str());
+    return CliResult{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
+  };
+  EXPECT_EQ(run_copy("run '" + sbv_file + "'").exit_code, 0);
+  const CliResult r = run_copy("mtf '" + source_dir + "/sensors/kolobrodov-1996-ccd151-computed.toml'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("radchain-imaging-commands.so: not found"), std::string::npos) << r.err;
+}
+
+}  // namespace
