@@ -1,9 +1,10 @@
 // `radchain catalogue`: many sensor files, one table of key results against their [expected] references.
+#include "radchain/batch/catalogue.hpp"
+
+#include "radchain/batch/run_batch.hpp"
 #include "radchain/batch/shard.hpp"
 #include "radchain/batch/table.hpp"
 #include "radchain/batch/thread_pool.hpp"
-#include "radchain/batch/catalogue.hpp"
-
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
 #include "radchain/units.hpp"
@@ -191,35 +192,37 @@ int run_catalogue(const std::vector<std::string>& files, const CatalogueOptions&
     std::string error;
   };
   std::vector<Outcome> outcomes(points.count);
-  preload_plugins();
-  parallel_chunks(points.count, 1, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::string& file = files[points[i]];
-      Outcome& out = outcomes[i];
-      try {
-        Chain chain = load_sensor(file, options.overrides);
-        const Report report = chain.run();
-        out.rows = catalogue_rows(file, report, options.extra_results);
-      } catch (const InputError& error) {
-        out.error = error.what();
-      } catch (const std::exception& error) {
-        out.error = fmt::format("{}: internal error: {}", file, error.what());
-      }
-      if (!out.error.empty()) out.rows = {catalogue_error_row(file, out.error)};
-      if (options.progress) options.progress->fetch_add(1, std::memory_order_relaxed);
-    }
-  });
   bool failed = false, bad_input = false;
-  for (std::size_t i = 0; i < points.count; ++i) {
-    for (const auto& row : outcomes[i].rows) {
-      failed = failed || row[check] == "FAIL";
-      writer.row(points[i], row);
-    }
-    if (!outcomes[i].error.empty()) {
-      bad_input = true;
-      if (errors) errors->push_back(outcomes[i].error);
-    }
-  }
+  // One file per task: files differ in cost by orders of magnitude (a spectral solve against a closed form).
+  run_batch(
+      points.count, points.count, 1,
+      [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const std::string& file = files[points[i]];
+          Outcome& out = outcomes[i];
+          try {
+            Chain chain = load_sensor(file, options.overrides);
+            const Report report = chain.run();
+            out.rows = catalogue_rows(file, report, options.extra_results);
+          } catch (const InputError& error) {
+            out.error = error.what();
+          } catch (const std::exception& error) {
+            out.error = fmt::format("{}: internal error: {}", file, error.what());
+          }
+          if (!out.error.empty()) out.rows = {catalogue_error_row(file, out.error)};
+          if (options.progress) options.progress->fetch_add(1, std::memory_order_relaxed);
+        }
+      },
+      [&](std::size_t i) {
+        for (const auto& row : outcomes[i].rows) {
+          failed = failed || row[check] == "FAIL";
+          writer.row(points[i], row);
+        }
+        if (!outcomes[i].error.empty()) {
+          bad_input = true;
+          if (errors) errors->push_back(outcomes[i].error);
+        }
+      });
   return bad_input ? 2 : failed ? 1 : 0;
 }
 

@@ -1,10 +1,11 @@
 // `radchain sweep`: a grid of parameter values, the chain's solves re-run at each point, on all cores.
+#include "radchain/batch/sweep.hpp"
+
+#include "radchain/batch/catalogue.hpp"
+#include "radchain/batch/run_batch.hpp"
 #include "radchain/batch/shard.hpp"
 #include "radchain/batch/table.hpp"
 #include "radchain/batch/thread_pool.hpp"
-#include "radchain/batch/sweep.hpp"
-
-#include "radchain/batch/catalogue.hpp"  // preload_plugins
 #include "radchain/error.hpp"
 #include "radchain/units.hpp"
 
@@ -223,48 +224,45 @@ int Sweep::run(TableWriter& writer, std::string* failure,
                const std::function<void(std::size_t, const double*)>& observer) {
   const PointRange range = shard_points(options_.shard, points_);
   const std::size_t n_columns = columns();
-  preload_plugins();
   std::vector<std::unique_ptr<SweepWorker>> workers(worker_slots());
   std::mutex failure_mutex;
   std::size_t first_failed = std::numeric_limits<std::size_t>::max();
   std::string first_message;
 
-  // Blocks bound the memory (values and formatted cells) of long sweeps; inside a block the points run in
-  // parallel and are written in order afterwards.
+  // Blocks bound the memory (values and formatted cells) of long sweeps.
   constexpr std::size_t block = 16384;
-  std::vector<double> values;
-  std::vector<char> ok;
-  std::vector<std::vector<std::string>> cells;
-  for (std::size_t base = 0; base < range.count; base += block) {
-    const std::size_t count = std::min(block, range.count - base);
-    values.assign(count * n_columns, 0.0);
-    ok.assign(count, 1);
-    cells.assign(count, {});
-    parallel_chunks(count, 64, [&](std::size_t slot, std::size_t begin, std::size_t end) {
-      auto& worker = workers[slot];
-      if (!worker) worker = std::make_unique<SweepWorker>(*this);
-      std::size_t group[lane_count];
-      for (std::size_t i = begin; i < end; i += lane_count) {
-        const std::size_t count = std::min<std::size_t>(lane_count, end - i);
-        for (std::size_t k = 0; k < count; ++k) group[k] = range[base + i + k];
-        worker->evaluate_group(group, count, &values[i * n_columns], &ok[i]);
-        for (std::size_t k = 0; k < count; ++k) {
-          if (!ok[i + k]) {
-            std::lock_guard lock(failure_mutex);
-            if (group[k] < first_failed) first_failed = group[k], first_message = worker->failure_of(k);
+  std::vector<double> values(std::min(block, range.count) * n_columns);
+  std::vector<char> ok(std::min(block, range.count));
+  std::vector<std::vector<std::string>> cells(std::min(block, range.count));
+  run_batch(
+      range.count, block, 64,
+      [&](std::size_t slot, std::size_t begin, std::size_t end) {
+        auto& worker = workers[slot];
+        if (!worker) worker = std::make_unique<SweepWorker>(*this);
+        std::size_t group[lane_count];
+        for (std::size_t i = begin; i < end; i += lane_count) {
+          const std::size_t count = std::min<std::size_t>(lane_count, end - i);
+          const std::size_t at = i % block;  // position within the block's buffers
+          for (std::size_t k = 0; k < count; ++k) group[k] = range[i + k];
+          worker->evaluate_group(group, count, &values[at * n_columns], &ok[at]);
+          for (std::size_t k = 0; k < count; ++k) {
+            if (!ok[at + k]) {
+              std::lock_guard lock(failure_mutex);
+              if (group[k] < first_failed) first_failed = group[k], first_message = worker->failure_of(k);
+            }
+            std::vector<std::string>& row = cells[at + k];
+            row.clear();
+            row.reserve(n_columns);
+            for (std::size_t c = 0; c < n_columns; ++c) row.push_back(number_cell(values[(at + k) * n_columns + c]));
           }
-          std::vector<std::string>& row = cells[i + k];
-          row.reserve(n_columns);
-          for (std::size_t c = 0; c < n_columns; ++c) row.push_back(number_cell(values[(i + k) * n_columns + c]));
         }
-      }
-      if (options_.progress) options_.progress->fetch_add(end - begin, std::memory_order_relaxed);
-    });
-    for (std::size_t i = 0; i < count; ++i) {
-      if (observer) observer(range[base + i], &values[i * n_columns]);
-      writer.row(range[base + i], cells[i]);
-    }
-  }
+        if (options_.progress) options_.progress->fetch_add(end - begin, std::memory_order_relaxed);
+      },
+      [&](std::size_t i) {
+        const std::size_t at = i % block;
+        if (observer) observer(range[i], &values[at * n_columns]);
+        writer.row(range[i], cells[at]);
+      });
   if (first_failed == std::numeric_limits<std::size_t>::max()) return 0;
   if (failure) *failure = first_message;
   return 1;
