@@ -1,5 +1,7 @@
 // A minimal optics plugin written outside the radchain tree: a bare circular aperture with no losses.
-// It shows the whole contract: a schema, a Stage with prepare/evaluate, and RADCHAIN_PLUGIN at the bottom.
+// It shows the whole contract: a schema, a Stage with prepare/evaluate, and RADCHAIN_PLUGIN at the bottom,
+// which lists the shared results it publishes (radchain/vocabulary.hpp). Its name and kind come from the build
+// (radchain_add_plugin in CMakeLists.txt).
 #include <radchain/plugin.hpp>
 
 #include <numbers>
@@ -21,7 +23,7 @@ class Pinhole final : public Stage {
     if (c.light.signal.form != RadiationForm::pupil_irradiance)
       c.refuse_form("a point irradiance at the pupil", c.light.signal.form);
     c.light.signal.form = RadiationForm::focal_power;
-    area_ = c.declare("collecting_area", "m2", "π D²/4", "mm2");
+    area_ = c.declare(vocabulary::optics_collecting_area, "π D²/4", "mm2");
   }
   void evaluate(Context& c) override {
     const double area = std::numbers::pi * *aperture_ * *aperture_ / 4.0;
@@ -34,12 +36,11 @@ class Pinhole final : public Stage {
   ResultId area_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::optics, "pinhole",
-                            "a bare circular hole (out-of-tree example)", "geometry", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<Pinhole>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(Pinhole, {
+    .summary = "a bare circular hole (out-of-tree example)",
+    .reference = "geometry",
+    .schema = schema,
+    .publishes = {vocabulary::optics_collecting_area},
+})

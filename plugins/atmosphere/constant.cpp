@@ -34,8 +34,8 @@ class ConstantAtmosphere final : public Stage {
     }
     id_tau_ = c.declare("transmittance", "1", "input τ_A (one pass)");
     if (c.light.has_report_band() && down_) {
-      band_irradiance_ = c.find("source.band_irradiance");
-      if (band_irradiance_) id_ground_ = c.declare("ground_irradiance", "W m-2", "Kolobrodov 1996: E_0 = E's τ_A", "W/cm2");
+      band_irradiance_ = c.find(vocabulary::source_band_irradiance);
+      if (band_irradiance_) id_ground_ = c.declare(vocabulary::atmosphere_ground_irradiance, "Kolobrodov 1996: E_0 = E's τ_A", "W/cm2");
     }
   }
 
@@ -54,13 +54,12 @@ class ConstantAtmosphere final : public Stage {
   ResultId id_tau_{}, id_ground_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::atmosphere, "constant",
-                            "spectrally flat atmospheric transmittance τ_A, down and up paths, optional path radiance",
-                            "Kolobrodov 1996, text before eq. (5) and eq. (5)", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<ConstantAtmosphere>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(ConstantAtmosphere, {
+    .summary = "spectrally flat atmospheric transmittance τ_A, down and up paths, optional path radiance",
+    .reference = "Kolobrodov 1996, text before eq. (5) and eq. (5)",
+    .schema = schema,
+    .publishes = {vocabulary::atmosphere_ground_irradiance},
+    .needs = {if_present(vocabulary::source_band_irradiance)},
+})

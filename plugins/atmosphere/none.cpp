@@ -18,12 +18,10 @@ class NoAtmosphere final : public Stage {
   ResultId id_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::atmosphere, "none",
-                            "no atmosphere (space-based viewing): τ = 1, no path radiance", "-", &schema,
-                            [](const Params&) -> std::unique_ptr<Stage> { return std::make_unique<NoAtmosphere>(); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(NoAtmosphere, {
+    .summary = "no atmosphere (space-based viewing): τ = 1, no path radiance",
+    .reference = "-",
+    .schema = schema,
+})

@@ -46,13 +46,10 @@ class TabulatedTransmittance final : public Stage {
   ResultId id_tau_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::atmosphere, "tabulated_transmittance",
-                            "spectral atmospheric transmittance table, airmass-scaled, down and up paths",
-                            "Bouguer-Lambert-Beer law; table provenance in spectra/", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<TabulatedTransmittance>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(TabulatedTransmittance, {
+    .summary = "spectral atmospheric transmittance table, airmass-scaled, down and up paths",
+    .reference = "Bouguer-Lambert-Beer law; table provenance in spectra/",
+    .schema = schema,
+})

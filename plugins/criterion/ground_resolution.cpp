@@ -24,16 +24,16 @@ class GroundResolution final : public Stage {
   explicit GroundResolution(const Params& p) : required_(p.handle("ground_element")) {}
 
   void prepare(Context& c) override {
-    altitude_ = c.require("platform.altitude");
-    speed_ = c.require("platform.ground_speed");
-    tilt_ = c.require("platform.tilt");
-    focal_ = c.require("optics.focal_length");
-    element_ = c.require("detector.system_element");
-    line_ = c.require("detector.line_length");
-    period_ = c.require("detector.integration_time");
-    id_ground_ = c.declare("ground_element", "m", "Kolobrodov 1996 eq. (16): δV = V_s h / f'", "m");
+    altitude_ = c.require(vocabulary::platform_altitude);
+    speed_ = c.require(vocabulary::platform_ground_speed);
+    tilt_ = c.require(vocabulary::platform_tilt);
+    focal_ = c.require(vocabulary::optics_focal_length);
+    element_ = c.require(vocabulary::detector_system_element);
+    line_ = c.require(vocabulary::detector_line_length);
+    period_ = c.require(vocabulary::detector_integration_time);
+    id_ground_ = c.declare(vocabulary::criterion_ground_element, "Kolobrodov 1996 eq. (16): δV = V_s h / f'", "m");
     id_required_ = c.declare("required_ground_element", "m", "input δV", "m");
-    id_margin_ = c.declare("margin", "1", "δV_required / δV − 1");
+    id_margin_ = c.declare(vocabulary::criterion_margin, "δV_required / δV − 1");
     id_field_ = c.declare("angular_field", "rad", "eq. (17): 2ω = 2 atan(l_D / 2f')", "deg");
     id_field_across_ = c.declare("angular_field_across", "rad", "eq. (17): 2ω_y = 2 atan(V_s / 2f')", "deg");
     id_swath_ = c.declare("swath", "m", "eq. (18): V = l_D h / f'", "km");
@@ -76,13 +76,14 @@ class GroundResolution final : public Stage {
       id_edge_in_{}, id_edge_cross_{}, id_tilt_in_{}, id_tilt_cross_{}, id_along_{}, id_match_{}, id_period_match_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::criterion, "ground_resolution",
-                            "ground resolution element from altitude, focal length and the system element; field, swath",
-                            "Kolobrodov 1996 eqs. (16)-(19), (23)", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<GroundResolution>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(GroundResolution, {
+    .summary = "ground resolution element from altitude, focal length and the system element; field, swath",
+    .reference = "Kolobrodov 1996 eqs. (16)-(19), (23)",
+    .schema = schema,
+    .publishes = {vocabulary::criterion_ground_element, vocabulary::criterion_margin},
+    .needs = {vocabulary::platform_altitude, vocabulary::platform_ground_speed, vocabulary::platform_tilt,
+              vocabulary::optics_focal_length, vocabulary::detector_system_element, vocabulary::detector_line_length,
+              vocabulary::detector_integration_time},
+})

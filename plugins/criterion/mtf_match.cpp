@@ -32,14 +32,14 @@ class MtfMatch final : public Stage {
                                                               : physics::sinc_half_contrast_root())) {}
 
   void prepare(Context& c) override {
-    aperture_ = c.require("optics.aperture");
-    focal_ = c.require("optics.focal_length");
-    element_ = c.require("detector.element_size_for_mtf");
-    nu_half_ = c.require("detector.nu_half_contrast");
-    id_wavelength_ = c.declare("wavelength", "m", "input λ", "um");
+    aperture_ = c.require(vocabulary::optics_aperture);
+    focal_ = c.require(vocabulary::optics_focal_length);
+    element_ = c.require(vocabulary::detector_element_size_for_mtf);
+    nu_half_ = c.require(vocabulary::detector_nu_half_contrast);
+    id_wavelength_ = c.declare(vocabulary::criterion_wavelength, "input λ", "um");
     id_coefficient_ = c.declare("eta_coefficient", "1", "2·1.218·u (eq. 12)");
-    id_eta_ = c.declare("required_quality", "1", "Kolobrodov 1996 eq. (12): η = k (f'/D) λ / V_D");
-    id_margin_ = c.declare("margin", "1", "η_max / η − 1 (≥ 0: the objective can be matched)");
+    id_eta_ = c.declare(vocabulary::criterion_required_quality, "Kolobrodov 1996 eq. (12): η = k (f'/D) λ / V_D");
+    id_margin_ = c.declare(vocabulary::criterion_margin, "η_max / η − 1 (≥ 0: the objective can be matched)");
     id_min_aperture_ = c.declare("min_aperture", "m", "eq. (12) for D at η = η_max: D = k f' λ / (η_max V_D)", "mm");
     id_cutoff_ = c.declare("diffraction_cutoff", "m-1", "ν_c = D / (λ f')", "mm-1");
     id_diffraction_ = c.declare("diffraction_mtf_at_nu_half", "1", "exact circular-pupil MTF at ν_x1 (Goodman)");
@@ -68,13 +68,14 @@ class MtfMatch final : public Stage {
   ResultId id_wavelength_{}, id_coefficient_{}, id_eta_{}, id_margin_{}, id_min_aperture_{}, id_cutoff_{}, id_diffraction_{}, id_linear_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::criterion, "mtf_match",
-                            "objective-detector resolution matching at contrast 0.5: required η ≤ η_max, smallest pupil",
-                            "Kolobrodov 1996 eqs. (7), (11), (12)", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<MtfMatch>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(MtfMatch, {
+    .summary = "objective-detector resolution matching at contrast 0.5: required η ≤ η_max, smallest pupil",
+    .reference = "Kolobrodov 1996 eqs. (7), (11), (12)",
+    .schema = schema,
+    .publishes = {vocabulary::criterion_wavelength, vocabulary::criterion_required_quality,
+                  vocabulary::criterion_margin},
+    .needs = {vocabulary::optics_aperture, vocabulary::optics_focal_length, vocabulary::detector_element_size_for_mtf,
+              vocabulary::detector_nu_half_contrast},
+})

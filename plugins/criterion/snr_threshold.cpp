@@ -39,9 +39,9 @@ class SnrThreshold final : public LaneStage<SnrThreshold> {
   }
 
   void prepare(Context& c) override {
-    snr_ = c.require("detector.snr");
-    id_threshold_ = c.declare("threshold", "1", from_probabilities_ ? "T = z(1 - P_fa) + z(P_d), Gaussian" : "input T");
-    id_margin_ = c.declare("margin", "1", "SNR/T − 1 (≥ 0: detected, Pan 2010 eq. 10)");
+    snr_ = c.require(vocabulary::detector_snr);
+    id_threshold_ = c.declare(vocabulary::criterion_threshold, from_probabilities_ ? "T = z(1 - P_fa) + z(P_d), Gaussian" : "input T");
+    id_margin_ = c.declare(vocabulary::criterion_margin, "SNR/T − 1 (≥ 0: detected, Pan 2010 eq. 10)");
     id_detected_ = c.declare("detected", "1", "1 if SNR ≥ T (to 1e-9 T)");
     if (with_false_alarm_) {
       id_false_alarm_ = c.declare("false_alarm_probability", "1", "input P_fa");
@@ -89,13 +89,12 @@ class SnrThreshold final : public LaneStage<SnrThreshold> {
   std::optional<ResultId> id_false_alarm_, id_detection_probability_;
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::criterion, "snr_threshold",
-                            "detection when SNR ≥ T; T given or from P_d and P_fa (Gaussian)",
-                            "Pan et al. 2010 eqs. (10)-(11); Gaussian detection theory", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<SnrThreshold>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(SnrThreshold, {
+    .summary = "detection when SNR ≥ T; T given or from P_d and P_fa (Gaussian)",
+    .reference = "Pan et al. 2010 eqs. (10)-(11); Gaussian detection theory",
+    .schema = schema,
+    .publishes = {vocabulary::criterion_threshold, vocabulary::criterion_margin},
+    .needs = {vocabulary::detector_snr},
+})

@@ -75,19 +75,19 @@ class CcdFrame final : public LaneStage<CcdFrame> {
                                                   params_.has("qe_curve") ? &params_.spectrum("qe_curve") : nullptr);
 
     // The optics' PSF, found by name (telescope: psf = "airy" / "gaussian").
-    psf_wavelength_ = c.find("optics.psf_wavelength");
-    gaussian_fwhm_ = c.find("optics.gaussian_fwhm");
-    f_number_ = c.find("optics.f_number");
-    obscuration_ = c.find("optics.obscuration");
+    psf_wavelength_ = c.find(vocabulary::optics_psf_wavelength);
+    gaussian_fwhm_ = c.find(vocabulary::optics_gaussian_fwhm);
+    f_number_ = c.find(vocabulary::optics_f_number);
+    obscuration_ = c.find(vocabulary::optics_obscuration);
     const bool psf = (psf_wavelength_ && f_number_) || gaussian_fwhm_;
     if (psf && !ensquared_entry_.present && !pitch_entry_.present)
       params_.reject("pixel_pitch", "the optics publish a PSF: give pixel_pitch to compute the ensquared energy over the "
                                     "window (or give ensquared_energy)");
     // What a sky background needs: the pixel's solid angle and the photometry of a magnitude.
-    focal_length_ = c.find("optics.focal_length");
-    area_ = c.find("optics.collecting_area");
-    optics_transmittance_ = c.find("optics.transmittance");
-    sun_magnitude_ = c.find("source.visual_magnitude");
+    focal_length_ = c.find(vocabulary::optics_focal_length);
+    area_ = c.find(vocabulary::optics_collecting_area);
+    optics_transmittance_ = c.find(vocabulary::optics_transmittance);
+    sun_magnitude_ = c.find(vocabulary::source_visual_magnitude);
     if (sky_entry_.present) {
       if (!pitch_entry_.present) params_.reject("sky_brightness", "needs pixel_pitch (the pixel's solid angle is (pitch/f')²)");
       if (!focal_length_) params_.reject("sky_brightness", "needs the optics' focal_length (the pixel's solid angle is (pitch/f')²)");
@@ -95,11 +95,10 @@ class CcdFrame final : public LaneStage<CcdFrame> {
         params_.reject("sky_brightness", "needs a source with a visual magnitude (sun) and a telescope");
     }
 
-    id_signal_ = c.declare("signal_electrons", "electron",
-                           "S = EE × S_image: the point image's electrons in the detection window (Pan 2010 eq. 8, EE = 1)", "e-");
-    id_image_ = c.declare("image_electrons", "electron", "Pan 2010 eq. (8): S_image = t ∫ P_λ η λ/(hc) dλ", "e-");
-    id_ensquared_ = c.declare("ensquared_energy", "1", ensquared_equation(psf));
-    id_pixels_ = c.declare("window_pixel_count", "1", "n² pixels of the n×n detection window");
+    id_signal_ = c.declare(vocabulary::detector_signal_electrons, "S = EE × S_image: the point image's electrons in the detection window (Pan 2010 eq. 8, EE = 1)", "e-");
+    id_image_ = c.declare(vocabulary::detector_image_electrons, "Pan 2010 eq. (8): S_image = t ∫ P_λ η λ/(hc) dλ", "e-");
+    id_ensquared_ = c.declare(vocabulary::detector_ensquared_energy, ensquared_equation(psf));
+    id_pixels_ = c.declare(vocabulary::detector_window_pixel_count, "n² pixels of the n×n detection window");
     id_dark_ = c.declare("dark_electrons", "electron", "N_d = n² × dark rate × t (Pan 2010 §3.2 1)", "e-");
     id_dark_noise_ = c.declare("dark_noise", "electron", "√N_d (Poisson)", "e-");
     id_read_noise_ = c.declare("read_noise", "electron", "n σ_o: √(n² σ_o²) (Pan 2010 §3.2 2)", "e-");
@@ -111,13 +110,12 @@ class CcdFrame final : public LaneStage<CcdFrame> {
                                "B = n² S(m_sky) Ω_pixel/arcsec² (sky V mag/arcsec², solar spectrum)", "e-");
     id_background_noise_ = c.declare("background_noise", "electron", "√B (Poisson)", "e-");
     id_shot_noise_ = c.declare("shot_noise", "electron", "√S (Pan 2010 §3.2 4)", "e-");
-    id_noise_ = c.declare("noise_electrons", "electron", "Pan 2010 eq. (9) + sky: √(N_d + n²σ_o² + n² n_q² + B + S)", "e-");
-    id_snr_ = c.declare("snr", "1", "Pan 2010 eq. (10): S / n");
-    id_time_ = c.declare("integration_time", "s", "input t", "s");
+    id_noise_ = c.declare(vocabulary::detector_noise_electrons, "Pan 2010 eq. (9) + sky: √(N_d + n²σ_o² + n² n_q² + B + S)", "e-");
+    id_snr_ = c.declare(vocabulary::detector_snr, "Pan 2010 eq. (10): S / n");
+    id_time_ = c.declare(vocabulary::detector_integration_time, "input t", "s");
     if (pitch_entry_.present && focal_length_) {
       id_pixel_angle_ = c.declare("pixel_solid_angle", "sr", "Ω_pixel = (pitch/f')²", "arcsec2");
-      id_sky_pixel_ = c.declare("sky_electrons_per_pixel", "electron",
-                                "S(m_sky) Ω_pixel/arcsec²: one pixel's sky electrons per frame", "e-");
+      id_sky_pixel_ = c.declare(vocabulary::detector_sky_electrons_per_pixel, "S(m_sky) Ω_pixel/arcsec²: one pixel's sky electrons per frame", "e-");
     }
   }
 
@@ -226,14 +224,18 @@ class CcdFrame final : public LaneStage<CcdFrame> {
       id_quant_noise_{}, id_background_{}, id_background_noise_{}, id_shot_noise_{}, id_noise_{}, id_snr_{}, id_time_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::detector, "ccd_frame",
-                            "frame CCD: a point image's electrons in an n×n window and the dark/read/quantisation/sky/shot "
-                            "noise budget",
-                            "Pan et al. 2010 eqs. (6)-(10); EMVA 1288 R4.0; Born & Wolf §8.5.2 (ensquared energy)", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<CcdFrame>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(CcdFrame, {
+    .summary = "frame CCD: a point image's electrons in an n×n window and the dark/read/quantisation/sky/shot noise budget",
+    .reference = "Pan et al. 2010 eqs. (6)-(10); EMVA 1288 R4.0; Born & Wolf §8.5.2 (ensquared energy)",
+    .schema = schema,
+    .publishes = {vocabulary::detector_signal_electrons, vocabulary::detector_image_electrons,
+                  vocabulary::detector_ensquared_energy, vocabulary::detector_window_pixel_count,
+                  vocabulary::detector_noise_electrons, vocabulary::detector_snr,
+                  vocabulary::detector_integration_time, vocabulary::detector_sky_electrons_per_pixel},
+    .needs = {if_present(vocabulary::optics_psf_wavelength), if_present(vocabulary::optics_gaussian_fwhm),
+              if_present(vocabulary::optics_f_number), if_present(vocabulary::optics_obscuration),
+              if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_collecting_area),
+              if_present(vocabulary::optics_transmittance), if_present(vocabulary::source_visual_magnitude)},
+})

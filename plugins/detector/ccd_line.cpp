@@ -88,8 +88,7 @@ class CcdLine final : public Stage {
     element_ratio_ = physics::kolobrodov_system_element_ratio(sinc_root_);
 
     const std::string pinned = " (pinned paper value)";
-    id_time_ = c.declare("integration_time", "s",
-                         params_.has("integration_time") ? "input t_i" : "t_i = N / f_D (Kolobrodov 1996 worked example)", "ms");
+    id_time_ = c.declare(vocabulary::detector_integration_time, params_.has("integration_time") ? "input t_i" : "t_i = N / f_D (Kolobrodov 1996 worked example)", "ms");
     id_k_ref_ = c.declare("utilisation_reference", "1",
                           "k_i = ∫ S_lamp s_rel / ∫ S_lamp, whole response" +
                               (params_.has("utilisation_reference") ? pinned : std::string()));
@@ -100,21 +99,20 @@ class CcdLine final : public Stage {
       id_k_ref_computed_ = c.declare("utilisation_reference_computed", "1", "k_i from the lamp and the response curve");
     if (params_.has("utilisation_working"))
       id_k_work_computed_ = c.declare("utilisation_working_computed", "1", "k_c from the source and the response curve");
-    id_ratio_ = c.declare("utilisation_ratio", "1", "k_i / k_c");
+    id_ratio_ = c.declare(vocabulary::detector_utilisation_ratio, "k_i / k_c");
     id_nee_ = c.declare("nee_reference", "J m-2", "input H_nt (reference lamp)", "J/cm2");
-    id_nee_working_ = c.declare("nee_working", "J m-2", "H_nr = H_nt k_i / k_c", "J/cm2");
+    id_nee_working_ = c.declare(vocabulary::detector_nee_working, "H_nr = H_nt k_i / k_c", "J/cm2");
     id_threshold_ = c.declare("threshold_irradiance", "W m-2", "Kolobrodov 1996 eq. (20): E_n = H_nr / t_i", "W/cm2");
-    id_signal_ = c.declare("signal_irradiance", "W m-2", "eq. (21)/(6): E' = ∫_band E'_λ dλ of the contrast ΔM", "W/cm2");
-    id_snr_ = c.declare("snr", "1", "E' / E_n (signal exposure over noise-equivalent exposure)");
-    id_line_ = c.declare("line_length", "m", "l_D = pitch × N (eq. 17 text)", "mm");
-    id_element_ = c.declare("element_size_for_mtf", "m", "input V_D (eq. 8)", "um");
-    id_nu_half_ = c.declare("nu_half_contrast", "m-1",
-                            std::string("eq. (11): ν_x1 = u/V_D, u = ") + (paper_root ? "0.6 (paper)" : "0.603355 (exact)"),
+    id_signal_ = c.declare(vocabulary::detector_signal_irradiance, "eq. (21)/(6): E' = ∫_band E'_λ dλ of the contrast ΔM", "W/cm2");
+    id_snr_ = c.declare(vocabulary::detector_snr, "E' / E_n (signal exposure over noise-equivalent exposure)");
+    id_line_ = c.declare(vocabulary::detector_line_length, "l_D = pitch × N (eq. 17 text)", "mm");
+    id_element_ = c.declare(vocabulary::detector_element_size_for_mtf, "input V_D (eq. 8)", "um");
+    id_nu_half_ = c.declare(vocabulary::detector_nu_half_contrast, std::string("eq. (11): ν_x1 = u/V_D, u = ") + (paper_root ? "0.6 (paper)" : "0.603355 (exact)"),
                             "mm-1");
     id_nyquist_ = c.declare("nyquist_frequency", "m-1", "1 / (2 pitch)", "mm-1");
     id_mtf_nyquist_ = c.declare("mtf_at_nyquist", "1", "eq. (8): |sinc(π V_D ν_N)|");
     id_element_ratio_ = c.declare("system_element_ratio", "1", "eq. (15) solved (TOMS 748): V_s / V_D");
-    id_system_element_ = c.declare("system_element", "m", "V_s = (V_s/V_D) V_D (eq. 15)", "um");
+    id_system_element_ = c.declare(vocabulary::detector_system_element, "V_s = (V_s/V_D) V_D (eq. 15)", "um");
     if (params_.has("saturation_exposure"))
       id_dynamic_range_ = c.declare("dynamic_range", "1", "H_m / H_n (saturation over noise-equivalent exposure)");
     if (background_in_band_ > 0 && params_.has("saturation_exposure"))
@@ -164,13 +162,14 @@ class CcdLine final : public Stage {
   std::optional<ResultId> id_k_ref_computed_, id_k_work_computed_, id_saturation_, id_dynamic_range_;
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::detector, "ccd_line",
-                            "CCD line array of a pushbroom camera: NEE from a reference lamp, element MTF, geometry",
-                            "Kolobrodov 1996 eqs. (8), (11), (15), (20)-(21); Ishanin et al. 1991", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<CcdLine>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(CcdLine, {
+    .summary = "CCD line array of a pushbroom camera: NEE from a reference lamp, element MTF, geometry",
+    .reference = "Kolobrodov 1996 eqs. (8), (11), (15), (20)-(21); Ishanin et al. 1991",
+    .schema = schema,
+    .publishes = {vocabulary::detector_integration_time, vocabulary::detector_utilisation_ratio,
+                  vocabulary::detector_nee_working, vocabulary::detector_signal_irradiance, vocabulary::detector_snr,
+                  vocabulary::detector_line_length, vocabulary::detector_element_size_for_mtf,
+                  vocabulary::detector_nu_half_contrast, vocabulary::detector_system_element},
+})

@@ -73,23 +73,23 @@ class Telescope final : public LaneStage<Telescope> {
         background.spectrum = background.spectrum.product(params_.spectrum("transmittance_curve"), background.spectrum.unit());
       background.form = RadiationForm::focal_irradiance;
     }
-    id_area_ = c.declare("collecting_area", "m2", "π D²/4 (1 - ε²)", "cm2");
-    id_aperture_ = c.declare("aperture", "m", "input D", "cm");
-    id_transmittance_ = c.declare("transmittance", "1", "input τ");
-    id_obscuration_ = c.declare("obscuration", "1", "input ε (linear)");
+    id_area_ = c.declare(vocabulary::optics_collecting_area, "π D²/4 (1 - ε²)", "cm2");
+    id_aperture_ = c.declare(vocabulary::optics_aperture, "input D", "cm");
+    id_transmittance_ = c.declare(vocabulary::optics_transmittance, "input τ");
+    id_obscuration_ = c.declare(vocabulary::optics_obscuration, "input ε (linear)");
     has_focal_length_ = params_.has("focal_length");
     if (has_focal_length_) {
-      id_focal_ = c.declare("focal_length", "m", "input f'", "mm");
-      id_f_number_ = c.declare("f_number", "1", "N = f'/D");
+      id_focal_ = c.declare(vocabulary::optics_focal_length, "input f'", "mm");
+      id_f_number_ = c.declare(vocabulary::optics_f_number, "N = f'/D");
     }
     // The PSF, by name: the detector finds "optics.psf_wavelength" (Airy) or "optics.gaussian_fwhm".
     if (airy_) {
-      id_psf_wavelength_ = c.declare("psf_wavelength", "m", "input λ of the Airy PSF", "um");
+      id_psf_wavelength_ = c.declare(vocabulary::optics_psf_wavelength, "input λ of the Airy PSF", "um");
       id_airy_radius_ = c.declare("airy_radius", "m", "first dark ring v₁ λ N/π (v₁ = 3.8317 for ε = 0: 1.2197 λ N; "
                                   "Born & Wolf §8.5.2)", "um");
     }
-    if (gaussian_) id_gaussian_fwhm_ = c.declare("gaussian_fwhm", "m", "input FWHM of the Gaussian PSF", "um");
-    if (auto lux = c.find("target.illuminance"))
+    if (gaussian_) id_gaussian_fwhm_ = c.declare(vocabulary::optics_gaussian_fwhm, "input FWHM of the Gaussian PSF", "um");
+    if (auto lux = c.find(vocabulary::target_illuminance))
       target_lux_ = *lux, id_flux_ = c.declare("luminous_flux", "lm", "Pan 2010 eq. (2): F = π D² E_t / 4", "lm");
   }
 
@@ -145,13 +145,14 @@ class Telescope final : public LaneStage<Telescope> {
       id_psf_wavelength_{}, id_airy_radius_{}, id_gaussian_fwhm_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::optics, "telescope",
-                            "entrance pupil, obscuration, transmittance, focal length and PSF of an objective",
-                            "Pan 2010 eq. (2); Kolobrodov 1996 eq. (5); Born & Wolf §8.5.2 (Airy PSF)", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<Telescope>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(Telescope, {
+    .summary = "entrance pupil, obscuration, transmittance, focal length and PSF of an objective",
+    .reference = "Pan 2010 eq. (2); Kolobrodov 1996 eq. (5); Born & Wolf §8.5.2 (Airy PSF)",
+    .schema = schema,
+    .publishes = {vocabulary::optics_collecting_area, vocabulary::optics_aperture, vocabulary::optics_transmittance,
+                  vocabulary::optics_obscuration, vocabulary::optics_focal_length, vocabulary::optics_f_number,
+                  vocabulary::optics_psf_wavelength, vocabulary::optics_gaussian_fwhm},
+    .needs = {if_present(vocabulary::target_illuminance)},
+})

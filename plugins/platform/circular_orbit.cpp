@@ -28,12 +28,11 @@ class CircularOrbit final : public Stage {
 
   void prepare(Context& c) override {
     speed_pinned_ = params_.has("ground_speed");
-    id_altitude_ = c.declare("altitude", "m", "input h", "km");
-    id_tilt_ = c.declare("tilt", "rad", "input ω", "deg");
+    id_altitude_ = c.declare(vocabulary::platform_altitude, "input h", "km");
+    id_tilt_ = c.declare(vocabulary::platform_tilt, "input ω", "deg");
     id_orbit_speed_ = c.declare("orbital_speed", "m/s", "√(GM/(R+h)), circular orbit", "km/s");
     id_track_speed_ = c.declare("ground_track_speed", "m/s", "√(GM/(R+h))·R/(R+h), non-rotating Earth", "km/s");
-    id_speed_ = c.declare("ground_speed", "m/s",
-                          params_.has("ground_speed") ? "pinned (Kolobrodov 1996 eq. 23: v_f = 7.9 km/s)"
+    id_speed_ = c.declare(vocabulary::platform_ground_speed, params_.has("ground_speed") ? "pinned (Kolobrodov 1996 eq. 23: v_f = 7.9 km/s)"
                                                       : "= ground_track_speed",
                           "km/s");
   }
@@ -54,13 +53,11 @@ class CircularOrbit final : public Stage {
   ResultId id_altitude_{}, id_tilt_{}, id_orbit_speed_{}, id_track_speed_{}, id_speed_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::platform, "circular_orbit",
-                            "satellite on a circular orbit: altitude, line-of-sight tilt, ground-track speed",
-                            "Kepler circular orbit; WGS 84 GM; Kolobrodov 1996 eq. (23)", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<CircularOrbit>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(CircularOrbit, {
+    .summary = "satellite on a circular orbit: altitude, line-of-sight tilt, ground-track speed",
+    .reference = "Kepler circular orbit; WGS 84 GM; Kolobrodov 1996 eq. (23)",
+    .schema = schema,
+    .publishes = {vocabulary::platform_altitude, vocabulary::platform_tilt, vocabulary::platform_ground_speed},
+})

@@ -78,7 +78,7 @@ class BlackbodyLamp final : public Stage {
     id_c2_ = c.declare("second_radiation_constant", "m K", std::string("c2 of the ") + convention.name + " convention", "m K");
     id_total_ = c.declare("total_irradiance", "W m-2",
                           "∫ E_λ dλ of Planck M_λ(T, c2) at the given level (relative lamp: 1 W m-2)", "W m-2");
-    id_illuminance_ = c.declare("illuminance", "lx", "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ", "lx");
+    id_illuminance_ = c.declare(vocabulary::source_illuminance, "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ", "lx");
     id_efficacy_ = c.declare("luminous_efficacy", "lm W-1", "E_v / E_e of the Planck spectrum", "lm W-1");
     id_relative_ = c.declare("relative", "1", "1: no irradiance or illuminance given, the level is relative (scale 1)");
   }
@@ -106,13 +106,11 @@ class BlackbodyLamp final : public Stage {
   ResultId id_temperature_{}, id_c2_{}, id_total_{}, id_illuminance_{}, id_efficacy_{}, id_relative_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::source, "blackbody_lamp",
-                            "Planckian reference lamp (CIE A, 2854 K) at a stated temperature and c2 convention",
-                            "Planck; CIE S 014-2 illuminant A; IPTS-48; ITS-90; Kolobrodov 1996", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<BlackbodyLamp>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(BlackbodyLamp, {
+    .summary = "Planckian reference lamp (CIE A, 2854 K) at a stated temperature and c2 convention",
+    .reference = "Planck; CIE S 014-2 illuminant A; IPTS-48; ITS-90; Kolobrodov 1996",
+    .schema = schema,
+    .publishes = {vocabulary::source_illuminance},
+})

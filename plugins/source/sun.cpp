@@ -80,14 +80,14 @@ class Sun final : public Stage {
     c.light.illumination = spectrum;
     total_ = spectrum.integral();
     id_total_ = c.declare("total_irradiance", "W m-2", "∫ E_λ dλ over the spectrum (solar constant at 1 AU)", "W m-2");
-    id_illuminance_ = c.declare("illuminance", "lx", "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ, at 1 AU" +
+    id_illuminance_ = c.declare(vocabulary::source_illuminance, "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ, at 1 AU" +
                                 std::string(params_.has("illuminance") ? " (pinned paper value)" : ""), "lx");
     if (params_.has("illuminance"))
       id_illuminance_computed_ = c.declare("illuminance_computed", "lx", "683 ∫ V E_λ dλ of the unscaled spectrum", "lx");
     computed_illuminance_ = computed_illuminance;
     id_efficacy_ = c.declare("luminous_efficacy", "lm W-1", "E_v / E_e", "lm W-1");
-    id_magnitude_ = c.declare("visual_magnitude", "1", "Pan 2010 eq. (1) reference m_sun");
-    id_distance_ = c.declare("distance", "m", "input", "AU");
+    id_magnitude_ = c.declare(vocabulary::source_visual_magnitude, "Pan 2010 eq. (1) reference m_sun");
+    id_distance_ = c.declare(vocabulary::source_distance, "input", "AU");
     has_band_ = params_.has("band_min");
     if (has_band_) prepare_band(c, spectrum);
   }
@@ -123,7 +123,7 @@ class Sun final : public Stage {
       if (pinned)
         id_z_computed_[i] = c.declare(std::string(keys[i]) + "_computed", "1", "∫_0^λ E_λ dλ / ∫ E_λ dλ of the spectrum");
     }
-    id_band_ = c.declare("band_irradiance", "W m-2", "Kolobrodov 1996: E'_s = E_s [z(λ2) - z(λ1)]", "W/cm2");
+    id_band_ = c.declare(vocabulary::source_band_irradiance, "Kolobrodov 1996: E'_s = E_s [z(λ2) - z(λ1)]", "W/cm2");
     c.light.report_band_min_m = lo;
     c.light.report_band_max_m = hi;
     if (pinned_z_[0] || pinned_z_[1])
@@ -162,13 +162,12 @@ class Sun final : public Stage {
   ResultId id_z_[2]{}, id_z_computed_[2]{}, id_band_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::source, "sun",
-                            "the Sun outside the atmosphere: AM0 table or Planck model, at a distance",
-                            "ASTM E-490-00a; Wehrli 1985; CIE 015 photometry; Planck", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<Sun>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(Sun, {
+    .summary = "the Sun outside the atmosphere: AM0 table or Planck model, at a distance",
+    .reference = "ASTM E-490-00a; Wehrli 1985; CIE 015 photometry; Planck",
+    .schema = schema,
+    .publishes = {vocabulary::source_illuminance, vocabulary::source_visual_magnitude, vocabulary::source_distance,
+                  vocabulary::source_band_irradiance},
+})

@@ -44,11 +44,11 @@ class Tabulated final : public Stage {
     total_ = spectrum.integral();
     illuminance_ = physics::luminous(spectrum, params_.spectrum("v_lambda"));
     id_total_ = c.declare("total_irradiance", "W m-2", "∫ E_λ dλ over the table", "W m-2");
-    id_illuminance_ = c.declare("illuminance", "lx", "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ", "lx");
+    id_illuminance_ = c.declare(vocabulary::source_illuminance, "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ", "lx");
     id_efficacy_ = c.declare("luminous_efficacy", "lm W-1", "E_v / E_e", "lm W-1");
     if (params_.has("visual_magnitude"))
-      id_magnitude_ = c.declare("visual_magnitude", "1", "input: reference magnitude for Pan 2010 eq. (1)");
-    if (scaled_by_distance_) id_distance_ = c.declare("distance", "m", "input", "m");
+      id_magnitude_ = c.declare(vocabulary::source_visual_magnitude, "input: reference magnitude for Pan 2010 eq. (1)");
+    if (scaled_by_distance_) id_distance_ = c.declare(vocabulary::source_distance, "input", "m");
   }
 
   void evaluate(Context& c) override {
@@ -71,13 +71,11 @@ class Tabulated final : public Stage {
   ResultId id_total_{}, id_illuminance_{}, id_efficacy_{}, id_magnitude_{}, id_distance_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::source, "tabulated",
-                            "any tabulated spectral irradiance (absolute units), optionally moved to another distance",
-                            "CIE 015 photometry; inverse-square law", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<Tabulated>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(Tabulated, {
+    .summary = "any tabulated spectral irradiance (absolute units), optionally moved to another distance",
+    .reference = "CIE 015 photometry; inverse-square law",
+    .schema = schema,
+    .publishes = {vocabulary::source_illuminance, vocabulary::source_visual_magnitude, vocabulary::source_distance},
+})

@@ -36,12 +36,12 @@ class LambertianGround final : public Stage {
     c.light.signal = Radiation{RadiationForm::scene_radiance, per_reflectance, 1.0};
     Spectrum background = per_reflectance;
     c.light.background = Radiation{RadiationForm::scene_radiance, background, 1.0};
-    id_delta_rho_ = c.declare("reflectance_difference", "1", "Δρ, absolute (Kolobrodov 1996 eq. 4)");
+    id_delta_rho_ = c.declare(vocabulary::target_reflectance_difference, "Δρ, absolute (Kolobrodov 1996 eq. 4)");
     id_relative_ = c.declare("relative_contrast", "1", "Δρ/ρ_b (Kolobrodov 1996 eq. 1)");
     if (c.light.has_report_band()) {
       ground_irradiance_per_scale_ =
           c.light.illumination.integral(c.light.report_band_min_m, c.light.report_band_max_m);
-      id_exitance_ = c.declare("background_exitance", "W m-2", "M_b = E_0 ρ_b (Kolobrodov 1996 eq. 2)", "W/cm2");
+      id_exitance_ = c.declare(vocabulary::target_background_exitance, "M_b = E_0 ρ_b (Kolobrodov 1996 eq. 2)", "W/cm2");
       id_threshold_ = c.declare("threshold_exitance", "W m-2", "ΔM_n = E_0 Δρ (Kolobrodov 1996 eq. 4)", "W/cm2");
     }
   }
@@ -69,13 +69,11 @@ class LambertianGround final : public Stage {
   std::optional<ResultId> id_exitance_, id_threshold_;
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::target, "lambertian_ground",
-                            "Lambertian ground of albedo ρ_b with an object of reflectance difference Δρ",
-                            "Kolobrodov 1996 eqs. (1)-(4)", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<LambertianGround>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(LambertianGround, {
+    .summary = "Lambertian ground of albedo ρ_b with an object of reflectance difference Δρ",
+    .reference = "Kolobrodov 1996 eqs. (1)-(4)",
+    .schema = schema,
+    .publishes = {vocabulary::target_reflectance_difference, vocabulary::target_background_exitance},
+})

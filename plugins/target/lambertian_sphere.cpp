@@ -56,9 +56,9 @@ class LambertianSphere final : public Stage {
     c.light.signal.spectrum = c.light.illumination;
     if (!c.light.up_path_transmittance.empty())
       c.light.signal.spectrum = c.light.signal.spectrum.product(c.light.up_path_transmittance, c.light.signal.spectrum.unit());
-    sun_magnitude_ = c.find("source.visual_magnitude");
-    sun_illuminance_ = c.find("source.illuminance");
-    sun_distance_ = c.find("source.distance");
+    sun_magnitude_ = c.find(vocabulary::source_visual_magnitude);
+    sun_illuminance_ = c.find(vocabulary::source_illuminance);
+    sun_distance_ = c.find(vocabulary::source_distance);
     id_diameter_ = c.declare("diameter", "m", "input D", "cm");
     id_bond_ = c.declare("bond_albedo", "1", "ρ (Lambert sphere: Bond albedo = surface albedo, phase integral q = 3/2)");
     id_geometric_ = c.declare("geometric_albedo", "1", "p = 2ρ/3 (Lambert sphere, Russell 1916)");
@@ -71,7 +71,7 @@ class LambertianSphere final : public Stage {
       id_ratio_ = c.declare("irradiance_ratio", "1", "E_t / E_sun(1 AU), the ratio of Pan 2010 eq. (1)");
       id_magnitude_ = c.declare("magnitude", "1", "apparent visual magnitude, Pan 2010 eq. (1) inverted: "
                                 "m = m_sun − 2.5 lg(E_t/E_sun)");
-      if (sun_illuminance_) id_illuminance_ = c.declare("illuminance", "lx", "E_t = ratio × E_s(1 AU)", "lx");
+      if (sun_illuminance_) id_illuminance_ = c.declare(vocabulary::target_illuminance, "E_t = ratio × E_s(1 AU)", "lx");
     }
   }
 
@@ -109,14 +109,13 @@ class LambertianSphere final : public Stage {
   ResultId id_diameter_{}, id_bond_{}, id_geometric_{}, id_phase_{}, id_range_{}, id_phase_angle_{}, id_reflectance_{};
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::target, "lambertian_sphere",
-                            "diffuse (Lambertian) sphere of given diameter and albedo at a range and solar phase angle",
-                            "Russell 1916 (Lambert sphere: p = 2ρ/3, Φ(α)); Pan et al. 2010 eq. (1) for its magnitude",
-                            &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<LambertianSphere>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(LambertianSphere, {
+    .summary = "diffuse (Lambertian) sphere of given diameter and albedo at a range and solar phase angle",
+    .reference = "Russell 1916 (Lambert sphere: p = 2ρ/3, Φ(α)); Pan et al. 2010 eq. (1) for its magnitude",
+    .schema = schema,
+    .publishes = {vocabulary::target_illuminance},
+    .needs = {if_present(vocabulary::source_visual_magnitude), if_present(vocabulary::source_illuminance),
+              if_present(vocabulary::source_distance)},
+})

@@ -32,10 +32,10 @@ class PointMagnitude final : public LaneStage<PointMagnitude> {
     c.light.signal.spectrum = c.light.illumination;
     if (!c.light.up_path_transmittance.empty())  // seen through an atmosphere (ground-based viewing)
       c.light.signal.spectrum = c.light.signal.spectrum.product(c.light.up_path_transmittance, c.light.signal.spectrum.unit());
-    sun_magnitude_ = c.require("source.visual_magnitude");
-    sun_illuminance_ = c.require("source.illuminance");
-    sun_distance_ = c.find("source.distance");
-    id_illuminance_ = c.declare("illuminance", "lx", "Pan 2010 eq. (1): E_t = 10^{0.4(m_sun - m)} E_s", "lx");
+    sun_magnitude_ = c.require(vocabulary::source_visual_magnitude);
+    sun_illuminance_ = c.require(vocabulary::source_illuminance);
+    sun_distance_ = c.find(vocabulary::source_distance);
+    id_illuminance_ = c.declare(vocabulary::target_illuminance, "Pan 2010 eq. (1): E_t = 10^{0.4(m_sun - m)} E_s", "lx");
     id_ratio_ = c.declare("irradiance_ratio", "1", "Pan 2010 eq. (1): E_t / E_s");
   }
 
@@ -61,13 +61,13 @@ class PointMagnitude final : public LaneStage<PointMagnitude> {
   std::optional<ResultId> sun_distance_;
 };
 
-const PluginInfo& info() {
-  static const PluginInfo i{plugin_abi_version, framework_version, Kind::target, "point_magnitude",
-                            "point object of given visual magnitude with the source's spectral shape",
-                            "Pan et al. 2010, Acta Optica Sinica 30(10), eq. (1)", &schema,
-                            [](const Params& p) -> std::unique_ptr<Stage> { return std::make_unique<PointMagnitude>(p); }};
-  return i;
-}
 }  // namespace
 
-RADCHAIN_PLUGIN(info)
+RADCHAIN_PLUGIN(PointMagnitude, {
+    .summary = "point object of given visual magnitude with the source's spectral shape",
+    .reference = "Pan et al. 2010, Acta Optica Sinica 30(10), eq. (1)",
+    .schema = schema,
+    .publishes = {vocabulary::target_illuminance},
+    .needs = {vocabulary::source_visual_magnitude, vocabulary::source_illuminance,
+              if_present(vocabulary::source_distance)},
+})

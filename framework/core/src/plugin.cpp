@@ -2,7 +2,12 @@
 
 #include "radchain/error.hpp"
 
+#include "radchain/plugin_host.hpp"
+
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
 
 namespace radchain {
 
@@ -10,36 +15,38 @@ Stage::~Stage() = default;  // the key function lives in the framework, so every
 void Stage::prepare(Context&) {}
 bool Stage::evaluate_lanes(LaneContext&) { return false; }
 
-std::string to_string(Kind kind) {
-  switch (kind) {
-    case Kind::platform: return "platform";
-    case Kind::source: return "source";
-    case Kind::target: return "target";
-    case Kind::atmosphere: return "atmosphere";
-    case Kind::optics: return "optics";
-    case Kind::detector: return "detector";
-    case Kind::criterion: return "criterion";
-  }
-  return "?";
+namespace {
+const KindInfo& info_of(Kind kind) {
+  for (const KindInfo& k : kinds)
+    if (k.kind == kind) return k;
+  throw std::logic_error(fmt::format("no Kind {} in radchain::kinds", static_cast<int>(kind)));
 }
+}  // namespace
 
-std::string kind_directory(Kind kind) {
-  switch (kind) {
-    case Kind::platform: return "platforms";
-    case Kind::source: return "sources";
-    case Kind::target: return "targets";
-    case Kind::atmosphere: return "atmospheres";
-    case Kind::optics: return "optics";
-    case Kind::detector: return "detectors";
-    case Kind::criterion: return "criteria";
-  }
-  return "?";
-}
+std::string to_string(Kind kind) { return std::string(info_of(kind).name); }
+std::string kind_directory(Kind kind) { return std::string(info_of(kind).name); }
 
-std::optional<Kind> kind_from_directory(const std::string& directory) {
-  for (Kind k : {Kind::platform, Kind::source, Kind::target, Kind::atmosphere, Kind::optics, Kind::detector, Kind::criterion})
-    if (kind_directory(k) == directory) return k;
+std::optional<Kind> kind_from_name(std::string_view name) {
+  for (const KindInfo& k : kinds)
+    if (k.name == name) return k.kind;
   return std::nullopt;
+}
+
+Kind kind_of_section(std::string_view section) {
+  const std::string_view head = section.substr(0, section.find('.'));  // "criteria.detection" -> "criteria"
+  for (const KindInfo& k : kinds)
+    if (k.section == head) return k.kind;
+  throw std::logic_error(fmt::format("\"{}\" is no plugin kind's section", section));
+}
+
+bool PluginInfo::publishes_term(const Term& term) const {
+  return std::find(publishes.begin(), publishes.end(), term) != publishes.end();
+}
+
+const Need* PluginInfo::need_of(const Term& term) const {
+  for (const Need& n : needs)
+    if (n.term == term) return &n;
+  return nullptr;
 }
 
 std::string to_string(RadiationForm form) {
@@ -53,10 +60,26 @@ std::string to_string(RadiationForm form) {
   return "?";
 }
 
+namespace {
+// The contract a plugin states (PluginInfo::publishes, needs), or nothing for a stage the host did not load
+// (a test's hand-built stage).
+const PluginInfo* contract_of(const std::string& plugin) { return PluginHost::instance().loaded(plugin); }
+}  // namespace
+
 ResultId Context::declare(std::string_view name, std::string_view si_unit, std::string_view equation,
                           std::string_view display_unit) {
+  return declare_result(nullptr, name, si_unit, equation, display_unit);
+}
+
+ResultId Context::declare(const Term& term, std::string_view equation, std::string_view display_unit) {
+  return declare_result(&term, term.key(), term.unit, equation, display_unit);
+}
+
+ResultId Context::declare_result(const Term* term, std::string_view name, std::string_view si_unit,
+                                 std::string_view equation, std::string_view display_unit) {
   if (declarations_ && next_declaration_ < declarations_->size()) {
-    // The same declaration as at the last spectral phase: "<section>.<name>" with the same unit and equation.
+    // The same declaration as at the last spectral phase: "<section>.<name>" with the same unit and equation
+    // (checked against the contract when it was first made).
     const ResultId id = (*declarations_)[next_declaration_];
     const ResultInfo& info = results.info(id);
     const std::string_view known = info.name;  // "<section>.<name>": the section is this stage's by construction
@@ -66,7 +89,22 @@ ResultId Context::declare(std::string_view name, std::string_view si_unit, std::
       return id;
     }
   }
-  const ResultId id = results.declare(section + "." + std::string(name), std::string(si_unit), plugin, std::string(equation),
+  std::string qualified = section + "." + std::string(name);
+  if (!term) {
+    if (const Term* known = vocabulary::term_of(qualified))
+      throw std::logic_error(fmt::format("plugin \"{}\" declares \"{}\" as a plain name: it is the vocabulary's \"{}\" "
+                                         "(declare it with Context::declare(term, ...))",
+                                         plugin, qualified, known->name));
+  } else {
+    if (!term->matches(qualified))
+      throw std::logic_error(fmt::format("plugin \"{}\" in [{}] declares \"{}\", a result of another section", plugin,
+                                         section, term->name));
+    if (const PluginInfo* info = contract_of(plugin); info && !info->publishes_term(*term))
+      throw std::logic_error(fmt::format("plugin \"{}\" declares \"{}\" but does not list it in `publishes` "
+                                         "(RADCHAIN_PLUGIN(..., .publishes = {{...}}))",
+                                         plugin, term->name));
+  }
+  const ResultId id = results.declare(std::move(qualified), std::string(si_unit), plugin, std::string(equation),
                                       std::string(display_unit));
   if (declarations_) {
     declarations_->resize(next_declaration_);  // a stage that declares differently from now on: forget the rest
@@ -76,13 +114,38 @@ ResultId Context::declare(std::string_view name, std::string_view si_unit, std::
   return id;
 }
 
-std::optional<ResultId> Context::find(std::string_view qualified_name) {
+std::optional<ResultId> Context::find(const Term& term) { return look_up(term, false); }
+
+ResultId Context::require(const Term& term) {
+  if (auto id = look_up(term, true)) return *id;
+  throw InputError({}, fmt::format("{} (plugin \"{}\")", section, plugin), "",
+                   fmt::format("needs the result \"{}\", which no earlier stage provides: the chain's plugins do not fit together",
+                               term.name));
+}
+
+std::optional<ResultId> Context::look_up(const Term& term, bool required) {
+  const std::string_view qualified_name = term.name;
   if (lookups_ && next_lookup_ < lookups_->size()) {
     const ResultId id = (*lookups_)[next_lookup_];
     if (id < results.size() && results.info(id).name == qualified_name) {
       ++next_lookup_;
       return id;
     }
+  }
+  // Not a repeat of the last spectral phase: the look-up must be one the plugin states.
+  if (term.per_criterion())
+    throw std::logic_error(fmt::format("plugin \"{}\" looks up \"{}\": a criterion's result is no stage's input",
+                                       plugin, term.name));
+  if (const PluginInfo* info = contract_of(plugin)) {
+    const Need* need = info->need_of(term);
+    if (!need)
+      throw std::logic_error(fmt::format("plugin \"{}\" reads the result \"{}\" but does not list it in `needs` "
+                                         "(RADCHAIN_PLUGIN(..., .needs = {{...}}))",
+                                         plugin, term.name));
+    if (required && need->optional)
+      throw std::logic_error(fmt::format("plugin \"{}\" requires the result \"{}\" but lists it as if_present() in "
+                                         "`needs`",
+                                         plugin, term.name));
   }
   const std::optional<ResultId> id = results.find(qualified_name);
   if (lookups_ && id) {  // (a miss is not remembered: a later spectral phase may find the result)
@@ -91,13 +154,6 @@ std::optional<ResultId> Context::find(std::string_view qualified_name) {
     ++next_lookup_;
   }
   return id;
-}
-
-ResultId Context::require(std::string_view qualified_name) {
-  if (auto id = find(qualified_name)) return *id;
-  throw InputError({}, fmt::format("{} (plugin \"{}\")", section, plugin), "",
-                   fmt::format("needs the result \"{}\", which no earlier stage provides: the chain's plugins do not fit together",
-                               qualified_name));
 }
 
 void Context::refuse_form(const std::string& what, RadiationForm form) const {

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -27,9 +28,12 @@ std::string with_article(const std::string& noun) {
 }  // namespace
 
 struct PluginHost::Impl {
+  std::mutex mutex;  // sensor files load in parallel (catalogue)
   std::deque<boost::dll::shared_library> libraries;  // never unloaded
   std::map<std::string, const PluginInfo*> by_path;
+  std::map<std::string, const PluginInfo*, std::less<>> by_name;  // first loaded under a name
   std::set<std::string> shadow_warnings;
+  std::optional<std::vector<PluginFile>> discovered;  // the scan of the current search path
 };
 
 PluginHost& PluginHost::instance() {
@@ -40,6 +44,8 @@ PluginHost& PluginHost::instance() {
 PluginHost::PluginHost() : impl_(new Impl) { configure({}); }
 
 void PluginHost::configure(const std::vector<std::string>& explicit_dirs) {
+  std::lock_guard lock(impl_->mutex);
+  impl_->discovered.reset();  // a new search path: scan again at the next look-up
   search_path_.clear();
   auto add = [&](const std::string& dir) {
     if (!dir.empty() && std::find(search_path_.begin(), search_path_.end(), dir) == search_path_.end())
@@ -67,13 +73,19 @@ void PluginHost::configure(const std::vector<std::string>& explicit_dirs) {
 }
 
 std::vector<PluginFile> PluginHost::discover() const {
+  std::lock_guard lock(impl_->mutex);
+  return discovered();
+}
+
+const std::vector<PluginFile>& PluginHost::discovered() const {
+  if (impl_->discovered) return *impl_->discovered;
   std::vector<PluginFile> found;
   std::map<std::string, std::string> first_path;  // name -> path
   for (const auto& dir : search_path_) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) continue;
     for (const auto& kind_dir : fs::directory_iterator(dir, ec)) {
-      const auto kind = kind_from_directory(kind_dir.path().filename().string());
+      const auto kind = kind_from_name(kind_dir.path().filename().string());
       if (!kind || !kind_dir.is_directory()) continue;
       std::vector<fs::path> files;
       for (const auto& file : fs::directory_iterator(kind_dir.path(), ec))
@@ -94,10 +106,21 @@ std::vector<PluginFile> PluginHost::discover() const {
   std::sort(found.begin(), found.end(), [](const PluginFile& a, const PluginFile& b) {
     return std::make_pair(static_cast<int>(a.kind), a.name) < std::make_pair(static_cast<int>(b.kind), b.name);
   });
-  return found;
+  return impl_->discovered.emplace(std::move(found));
+}
+
+const PluginInfo* PluginHost::loaded(std::string_view name) const {
+  std::lock_guard lock(impl_->mutex);
+  auto it = impl_->by_name.find(name);
+  return it == impl_->by_name.end() ? nullptr : it->second;
 }
 
 const PluginInfo& PluginHost::load_file(const std::string& path) {
+  std::lock_guard lock(impl_->mutex);
+  return load_file_locked(path);
+}
+
+const PluginInfo& PluginHost::load_file_locked(const std::string& path) {
   if (auto it = impl_->by_path.find(path); it != impl_->by_path.end()) return *it->second;
   auto fail = [&](const std::string& problem) { return InputError(SourceLocation{path, 0, 0}, "plugin library", "", problem); };
 
@@ -129,23 +152,25 @@ const PluginInfo& PluginHost::load_file(const std::string& path) {
   const std::string stem = fs::path(path).stem().string();
   if (stem != info.name)
     throw fail(fmt::format("declares the name \"{}\" but the file is named \"{}\": the two must be one string", info.name, stem));
-  const auto dir_kind = kind_from_directory(fs::path(path).parent_path().filename().string());
+  const auto dir_kind = kind_from_name(fs::path(path).parent_path().filename().string());
   if (dir_kind && *dir_kind != info.kind)
     throw fail(fmt::format("is a {} plugin but lies in a {}/ folder", to_string(info.kind), kind_directory(*dir_kind)));
   impl_->libraries.push_back(std::move(library));
   impl_->by_path.emplace(path, &info);
+  impl_->by_name.emplace(info.name, &info);
   return info;
 }
 
 const PluginInfo& PluginHost::load(Kind kind, const std::string& name) {
+  std::lock_guard lock(impl_->mutex);
   std::vector<std::string> available;
   std::optional<Kind> other_kind;  // the name exists, but for another section
-  for (const auto& file : discover()) {
+  for (const auto& file : discovered()) {
     if (file.kind != kind) {
       if (file.name == name) other_kind = file.kind;
       continue;
     }
-    if (file.name == name) return load_file(file.path);
+    if (file.name == name) return load_file_locked(file.path);
     available.push_back(file.name);
   }
   const std::string near = nearest_match(name, available);

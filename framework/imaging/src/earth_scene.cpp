@@ -70,10 +70,10 @@ double EarthSceneSetup::exposure_per_dn() const { return saturation_J_m2 / std::
 
 EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const EarthSceneOptions& o) {
   const std::string& file = chain.sensor_file;
-  auto need = [&](const std::string& name) {
-    const auto v = result(report, name);
+  auto need = [&](const Term& term) {
+    const auto v = result(report, term);
     if (!v)
-      refuse(file, name,
+      refuse(file, std::string(term.name),
              "an Earth scene needs a pushbroom chain (platform, telescope with a focal length, ccd_line detector, "
              "ground_resolution criterion) publishing this result; this sensor does not");
     return *v;
@@ -81,25 +81,25 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   EarthSceneSetup s;
   s.sensor_name = chain.sensor_name;
   s.sensor_file = chain.sensor_file;
-  s.altitude_m = need("platform.altitude");
-  s.focal_length_m = need("optics.focal_length");
-  s.f_number = need("optics.f_number");
-  s.aperture_m = need("optics.aperture");
-  s.obscuration = result(report, "optics.obscuration").value_or(0.0);
-  s.element_m = need("detector.element_size_for_mtf");
+  s.altitude_m = need(vocabulary::platform_altitude);
+  s.focal_length_m = need(vocabulary::optics_focal_length);
+  s.f_number = need(vocabulary::optics_f_number);
+  s.aperture_m = need(vocabulary::optics_aperture);
+  s.obscuration = result(report, vocabulary::optics_obscuration).value_or(0.0);
+  s.element_m = need(vocabulary::detector_element_size_for_mtf);
   s.pitch_m = detail::parameter(chain, "detector", "pixel_pitch").value_or(s.element_m);
-  s.reflectance_difference = need("target.reflectance_difference");
-  s.irradiance_per_reflectance_W_m2 = need("detector.signal_irradiance") / s.reflectance_difference;
-  s.integration_time_s = need("detector.integration_time");
-  s.nee_J_m2 = need("detector.nee_working");
-  s.snr = need("detector.snr");
-  if (auto g = detail::criterion_result(report, "ground_element")) s.ground_element_m = g->second;
+  s.reflectance_difference = need(vocabulary::target_reflectance_difference);
+  s.irradiance_per_reflectance_W_m2 = need(vocabulary::detector_signal_irradiance) / s.reflectance_difference;
+  s.integration_time_s = need(vocabulary::detector_integration_time);
+  s.nee_J_m2 = need(vocabulary::detector_nee_working);
+  s.snr = need(vocabulary::detector_snr);
+  if (auto g = detail::criterion_result(report, vocabulary::criterion_ground_element)) s.ground_element_m = g->second;
 
-  const auto quality = detail::criterion_result(report, "required_quality");
+  const auto quality = detail::criterion_result(report, vocabulary::criterion_required_quality);
   if (quality) s.eta = quality->second;
   if (o.wavelength_m) s.wavelength_m = *o.wavelength_m;
-  else if (quality && result(report, "criteria." + quality->first + ".wavelength"))
-    s.wavelength_m = *result(report, "criteria." + quality->first + ".wavelength");
+  else if (quality && result(report, vocabulary::criterion_wavelength, quality->first))
+    s.wavelength_m = *result(report, vocabulary::criterion_wavelength, quality->first);
   else {
     const auto lo = detail::parameter(chain, "detector", "band_min"), hi = detail::parameter(chain, "detector", "band_max");
     if (!lo || !hi) refuse(file, "wavelength", "give the MTF wavelength as an option (the sensor has no mtf_match criterion or band)");
@@ -111,9 +111,9 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
 
   if (o.saturation_exposure_J_m2) s.saturation_J_m2 = *o.saturation_exposure_J_m2;
   else if (auto h = detail::parameter(chain, "detector", "saturation_exposure"))
-    s.saturation_J_m2 = *h * result(report, "detector.utilisation_ratio").value_or(1.0);  // H_m k_i/k_c, as H_nr
+    s.saturation_J_m2 = *h * result(report, vocabulary::detector_utilisation_ratio).value_or(1.0);  // H_m k_i/k_c, as H_nr
   if (auto rho = detail::parameter(chain, "target", "albedo")) s.background_reflectance = *rho;
-  else if (auto m = result(report, "target.background_exitance"), e = result(report, "atmosphere.ground_irradiance"); m && e && *e > 0)
+  else if (auto m = result(report, vocabulary::target_background_exitance), e = result(report, vocabulary::atmosphere_ground_irradiance); m && e && *e > 0)
     s.background_reflectance = *m / *e;
 
   if (!(o.input_sampling_m > 0)) refuse(file, "input sampling", "give the ground size of one input pixel (> 0 m)");

@@ -2,13 +2,14 @@
 
 #include "radchain/error.hpp"
 #include "radchain/physics/mtf.hpp"
+#include "radchain/vocabulary.hpp"
 
 #include <fmt/format.h>
 
 namespace radchain {
 
 MtfCurves mtf_curves(const Report& report, int points) {
-  auto need = [&](const std::string& name) {
+  auto need = [&](const std::string& name) {  // a qualified name of a vocabulary term
     const auto v = report.value(name);
     if (!v) throw InputError(SourceLocation{report.sensor_file, 0, 0}, "mtf", name,
                              "this sensor publishes no such result: MTF curves need a telescope with a focal length, "
@@ -16,15 +17,15 @@ MtfCurves mtf_curves(const Report& report, int points) {
     return *v;
   };
   MtfCurves c;
-  c.f_number = need("optics.f_number");
-  c.element_m = need("detector.element_size_for_mtf");
-  std::string criterion;
+  c.f_number = need(std::string(vocabulary::optics_f_number.name));
+  c.element_m = need(std::string(vocabulary::detector_element_size_for_mtf.name));
+  std::string criterion;  // the last criterion publishing a required quality
   for (const auto& r : report.results)
-    if (r.name.size() > 17 && r.name.rfind("criteria.", 0) == 0 && r.name.ends_with(".required_quality"))
-      criterion = r.name.substr(0, r.name.size() - 17);
-  if (criterion.empty()) need("criteria.<name>.required_quality");
-  c.wavelength_m = need(criterion + ".wavelength");
-  c.eta = need(criterion + ".required_quality");
+    if (vocabulary::criterion_required_quality.matches(r.name))
+      criterion = r.name.substr(9, r.name.size() - 9 - vocabulary::criterion_required_quality.key().size() - 1);
+  if (criterion.empty()) need(vocabulary::criterion_required_quality.in_criterion("<name>"));
+  c.wavelength_m = need(vocabulary::criterion_wavelength.in_criterion(criterion));
+  c.eta = need(vocabulary::criterion_required_quality.in_criterion(criterion));
   const double top = 1.0 / c.element_m;
   for (int i = 0; i < points; ++i) {
     const double nu = top * i / (points - 1);

@@ -23,8 +23,8 @@ namespace {
 constexpr double arcsec_per_rad = 180.0 * 3600.0 / std::numbers::pi;
 
 double electrons_now(const Chain& chain) {
-  if (auto id = chain.results().find("detector.image_electrons")) return chain.results().value(*id);
-  return chain.result("detector.signal_electrons");
+  if (auto id = chain.results().find(vocabulary::detector_image_electrons.name)) return chain.results().value(*id);
+  return chain.result(std::string(vocabulary::detector_signal_electrons.name));
 }
 
 // Sets target.magnitude for each question and puts the value back (and re-evaluates) when it goes.
@@ -67,8 +67,8 @@ double limiting_magnitude(Chain& chain, const Report& report) {
 double threshold_of(const Report& report) {
   for (const auto& s : report.solves)
     if (s.spec.unknown == "target.magnitude" && !s.binding.empty())
-      if (auto t = result(report, "criteria." + s.binding + ".threshold")) return *t;
-  if (auto t = detail::criterion_result(report, "threshold")) return t->second;
+      if (auto t = result(report, vocabulary::criterion_threshold, s.binding)) return *t;
+  if (auto t = detail::criterion_result(report, vocabulary::criterion_threshold)) return t->second;
   return std::nan("");
 }
 
@@ -104,7 +104,8 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
     refuse(file, "frame size " + std::to_string(o.width) + "×" + std::to_string(o.height), "must lie in 1..32768 pixels");
   s.width = o.width;
   s.height = o.height;
-  if (!chain.results().find("detector.signal_electrons") || !chain.results().find("detector.noise_electrons")) {
+  if (!detail::publishes(chain, vocabulary::detector_signal_electrons) ||
+      !detail::publishes(chain, vocabulary::detector_noise_electrons)) {
     const StageSlot* det = detail::find_slot(chain, "detector");
     refuse(file, "detector", std::string("a frame needs a point-target detector publishing signal and noise electrons (ccd_frame); ") +
                                  "this sensor has " + (det ? "\"" + det->plugin + "\"" : "none") +
@@ -123,13 +124,13 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
   if (!(o.flat_field_electrons >= 0)) refuse(file, "flat field", "must be ≥ 0 electrons");
 
   // Optics, geometry and PSF: options first, then what the chain publishes.
-  s.aperture_m = result(report, "optics.aperture").value_or(0.0);
-  s.obscuration = o.obscuration ? *o.obscuration : result(report, "optics.obscuration").value_or(0.0);
-  s.focal_length_m = o.focal_length_m ? *o.focal_length_m : result(report, "optics.focal_length").value_or(0.0);
+  s.aperture_m = result(report, vocabulary::optics_aperture).value_or(0.0);
+  s.obscuration = o.obscuration ? *o.obscuration : result(report, vocabulary::optics_obscuration).value_or(0.0);
+  s.focal_length_m = o.focal_length_m ? *o.focal_length_m : result(report, vocabulary::optics_focal_length).value_or(0.0);
   s.pixel_pitch_m = o.pixel_pitch_m ? *o.pixel_pitch_m : detector("pixel_pitch").value_or(0.0);
   s.f_number = s.focal_length_m > 0 && s.aperture_m > 0 ? s.focal_length_m / s.aperture_m : 0.0;
-  const auto chain_wavelength = result(report, "optics.psf_wavelength");
-  const auto chain_fwhm = result(report, "optics.gaussian_fwhm");
+  const auto chain_wavelength = result(report, vocabulary::optics_psf_wavelength);
+  const auto chain_fwhm = result(report, vocabulary::optics_gaussian_fwhm);
   if (o.psf) s.psf = *o.psf;
   else if (o.psf_wavelength_m || chain_wavelength) s.psf = PsfModel::airy;
   else if (o.gaussian_fwhm_m || chain_fwhm) s.psf = PsfModel::gaussian;
@@ -154,7 +155,7 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
 
   // Detector background and ADC.
   s.sky_electrons = o.sky_electrons_per_pixel ? *o.sky_electrons_per_pixel
-                                              : result(report, "detector.sky_electrons_per_pixel").value_or(0.0);
+                                              : result(report, vocabulary::detector_sky_electrons_per_pixel).value_or(0.0);
   if (!(s.sky_electrons >= 0)) refuse(file, "sky", "must be ≥ 0 electrons per pixel");
   s.gain_e_per_dn = o.gain_e_per_dn ? *o.gain_e_per_dn : s.full_well_electrons / std::exp2(s.adc_bits);
   if (!(s.gain_e_per_dn > 0)) refuse(file, "gain", "must be > 0 e-/DN");
@@ -163,10 +164,10 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
   // The chain's answer.
   s.limiting_magnitude = limiting_magnitude(chain, report);
   s.snr_threshold = threshold_of(report);
-  s.limit_signal_electrons = result(report, "detector.signal_electrons").value_or(std::nan(""));
-  s.limit_noise_electrons = result(report, "detector.noise_electrons").value_or(std::nan(""));
-  s.window_pixels = static_cast<int>(std::lround(result(report, "detector.window_pixel_count").value_or(1.0)));
-  s.chain_ensquared_energy = result(report, "detector.ensquared_energy").value_or(1.0);
+  s.limit_signal_electrons = result(report, vocabulary::detector_signal_electrons).value_or(std::nan(""));
+  s.limit_noise_electrons = result(report, vocabulary::detector_noise_electrons).value_or(std::nan(""));
+  s.window_pixels = static_cast<int>(std::lround(result(report, vocabulary::detector_window_pixel_count).value_or(1.0)));
+  s.chain_ensquared_energy = result(report, vocabulary::detector_ensquared_energy).value_or(1.0);
 
   // Sources: electrons from the chain at each magnitude.
   MagnitudeProbe probe(chain);

@@ -1,28 +1,54 @@
 #pragma once
-// The plugin interface. A plugin is one .cpp file ending in RADCHAIN_PLUGIN(info_function), where
-// info_function returns a PluginInfo: ABI version, kind, name, schema and factory. The host reads the
-// exported ABI number before it calls anything in the library and refuses a mismatch.
+// The plugin interface. A plugin is one .cpp file, plugins/<kind>/<name>.cpp, ending in
+//   RADCHAIN_PLUGIN(StageClass, {.summary = "...", .reference = "...", .schema = schema,
+//                                .publishes = {vocabulary::...}, .needs = {vocabulary::...}})
+// The build gives the name and kind (RADCHAIN_PLUGIN_NAME, RADCHAIN_PLUGIN_KIND, from the file's path), so a
+// plugin never restates them. The host reads the exported ABI number before it calls anything in the library.
 #include "radchain/lanes.hpp"
 #include "radchain/light.hpp"
 #include "radchain/results.hpp"
 #include "radchain/schema.hpp"
 #include "radchain/version.hpp"
+#include "radchain/vocabulary.hpp"
 
 #include <boost/config.hpp>
 #include <boost/dll/alias.hpp>
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace radchain {
 
 enum class Kind { platform, source, target, atmosphere, optics, detector, criterion };
-std::string to_string(Kind kind);           // "source"
-std::string kind_directory(Kind kind);      // "sources"
-std::optional<Kind> kind_from_directory(const std::string& directory);
+
+// The one table of kinds. A kind's plugins live in plugins/<name>/ (source tree, build tree and install
+// prefix alike) and fill the sensor file's [<section>] (criteria: [criteria.<name>]).
+struct KindInfo {
+  Kind kind;
+  std::string_view name;     // "criterion": RADCHAIN_PLUGIN_KIND, the plugin folder, `radchain describe criterion`
+  std::string_view section;  // "criteria"
+};
+inline constexpr std::array<KindInfo, 7> kinds{{
+    {Kind::platform, "platform", "platform"},
+    {Kind::source, "source", "source"},
+    {Kind::target, "target", "target"},
+    {Kind::atmosphere, "atmosphere", "atmosphere"},
+    {Kind::optics, "optics", "optics"},
+    {Kind::detector, "detector", "detector"},
+    {Kind::criterion, "criterion", "criteria"},
+}};
+std::string to_string(Kind kind);                              // "source"
+std::string kind_directory(Kind kind);                         // "source": plugins/source/
+std::optional<Kind> kind_from_name(std::string_view name);     // a kind's name (or its folder), else nothing
+// The kind of a sensor file's section: "optics" -> optics, "criteria.detection" -> criterion. Throws
+// std::logic_error for a section that is no kind's.
+Kind kind_of_section(std::string_view section);
 
 // How much a scalar evaluation computes.
 enum class Detail {
@@ -49,17 +75,27 @@ class Context {
 
   // Declares "<section>.<name>". A stage declares the same results in the same order at every spectral phase;
   // then this is a comparison of names, not a look-up.
+  // A result only this stage's report shows; a name of the vocabulary must be declared as its Term.
   ResultId declare(std::string_view name, std::string_view si_unit, std::string_view equation,
                    std::string_view display_unit = {});
+  // A result of the vocabulary (its unit is the term's): the plugin must list it in `publishes`
+  // (std::logic_error otherwise, naming plugin and term).
+  ResultId declare(const Term& term, std::string_view equation, std::string_view display_unit = {});
   // A result another stage must have declared; a missing one is a chain that does not fit together
-  // (InputError naming both).
-  ResultId require(std::string_view qualified_name);
+  // (InputError naming both). The plugin must list the term in `needs` (std::logic_error otherwise).
+  ResultId require(const Term& term);
+  // A result this stage reads if an earlier stage declared it. The plugin must list the term in `needs`,
+  // usually as if_present(term) (std::logic_error otherwise).
   // (Like declare(): the same look-ups in the same order at every spectral phase are name comparisons.)
-  std::optional<ResultId> find(std::string_view qualified_name);
+  std::optional<ResultId> find(const Term& term);
   // The incoming radiation has a form this stage cannot take.
   [[noreturn]] void refuse_form(const std::string& what, RadiationForm form) const;
 
  private:
+  ResultId declare_result(const Term* term, std::string_view name, std::string_view si_unit, std::string_view equation,
+                          std::string_view display_unit);
+  std::optional<ResultId> look_up(const Term& term, bool required);
+
   std::vector<ResultId>* declarations_;  // this stage's declarations at its last spectral phase, in order
   std::size_t next_declaration_ = 0;
   std::vector<ResultId>* lookups_;       // the results it found, in order
@@ -121,6 +157,23 @@ class LaneStage : public Stage {
   }
 };
 
+// A result a plugin reads: required (Context::require), or read when present (if_present, Context::find).
+struct Need {
+  Term term;
+  bool optional = false;
+  constexpr Need(const Term& term, bool optional = false) : term(term), optional(optional) {}  // NOLINT: implicit
+};
+constexpr Need if_present(const Term& term) { return Need(term, true); }
+
+// What a plugin file states about itself; the build supplies its name and kind.
+struct PluginDescription {
+  const char* summary = "";    // one line
+  const char* reference = "";  // where the physics comes from
+  const Schema& (*schema)() = nullptr;
+  std::vector<Term> publishes = {};  // the vocabulary terms it declares (some only in some configurations)
+  std::vector<Need> needs = {};      // the vocabulary terms it reads
+};
+
 struct PluginInfo {
   std::uint32_t abi_version;
   const char* framework_version;
@@ -130,13 +183,37 @@ struct PluginInfo {
   const char* reference; // where the physics comes from
   const Schema& (*schema)();
   std::unique_ptr<Stage> (*create)(const Params& params);
+  std::vector<Term> publishes;
+  std::vector<Need> needs;
+
+  bool publishes_term(const Term& term) const;
+  const Need* need_of(const Term& term) const;
 };
+
+template <class StageType>
+PluginInfo make_plugin_info(Kind kind, const char* name, PluginDescription d) {
+  return PluginInfo{plugin_abi_version, framework_version, kind, name, d.summary, d.reference, d.schema,
+                    [](const Params& p) -> std::unique_ptr<Stage> {
+                      if constexpr (std::is_constructible_v<StageType, const Params&>) return std::make_unique<StageType>(p);
+                      else return std::make_unique<StageType>();  // a stage without parameters
+                    },
+                    std::move(d.publishes), std::move(d.needs)};
+}
 
 }  // namespace radchain
 
-// Declares the plugin's entry. Use once, at the bottom of the plugin's .cpp file.
-#define RADCHAIN_PLUGIN(info_function)                                                            \
-  extern "C" BOOST_SYMBOL_EXPORT const std::uint32_t radchain_plugin_abi_version;                  \
-  extern "C" BOOST_SYMBOL_EXPORT const std::uint32_t radchain_plugin_abi_version =                 \
-      ::radchain::plugin_abi_version;                                                              \
-  BOOST_DLL_ALIAS(info_function, radchain_plugin_info)
+// Declares the plugin's entry: use once, at the bottom of the plugin's .cpp file, with the Stage class (built
+// from `const Params&`) and a PluginDescription's designated initialisers:
+//   RADCHAIN_PLUGIN(SnrThreshold, {.summary = "...", .reference = "...", .schema = schema,
+//                                  .publishes = {vocabulary::criterion_margin}, .needs = {vocabulary::detector_snr}})
+// radchain_add_plugin() defines RADCHAIN_PLUGIN_NAME ("snr_threshold") and RADCHAIN_PLUGIN_KIND (criterion) from
+// the file's path. It exports two symbols: the ABI number and the Boost.DLL alias radchain_plugin_info.
+#define RADCHAIN_PLUGIN(StageType, ...)                                                                        \
+  static const ::radchain::PluginInfo& radchain_plugin_entry() {                                               \
+    static const ::radchain::PluginInfo info = ::radchain::make_plugin_info<StageType>(                        \
+        ::radchain::Kind::RADCHAIN_PLUGIN_KIND, RADCHAIN_PLUGIN_NAME, ::radchain::PluginDescription __VA_ARGS__); \
+    return info;                                                                                               \
+  }                                                                                                            \
+  extern "C" BOOST_SYMBOL_EXPORT const std::uint32_t radchain_plugin_abi_version;                              \
+  extern "C" BOOST_SYMBOL_EXPORT const std::uint32_t radchain_plugin_abi_version = ::radchain::plugin_abi_version; \
+  BOOST_DLL_ALIAS(radchain_plugin_entry, radchain_plugin_info)

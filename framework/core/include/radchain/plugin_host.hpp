@@ -5,6 +5,7 @@
 #include "radchain/plugin.hpp"
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace radchain {
@@ -24,7 +25,8 @@ class PluginHost {
   void configure(const std::vector<std::string>& explicit_dirs);
   const std::vector<std::string>& search_path() const { return search_path_; }
 
-  // All plugin files found, first-wins per name, in (kind, name) order.
+  // All plugin files found, first-wins per name, in (kind, name) order. The folders are scanned once per
+  // search path (again only after configure()).
   std::vector<PluginFile> discover() const;
   // Loads (once) and returns the plugin of this kind and name. Throws InputError listing the available
   // names of that kind when there is none, and when the library is broken (wrong ABI, no entry, not a
@@ -32,9 +34,13 @@ class PluginHost {
   const PluginInfo& load(Kind kind, const std::string& name);
   // Loads a library file directly (tests, `radchain describe ./x.so`).
   const PluginInfo& load_file(const std::string& path);
+  // The plugin loaded under this name, if any (Context checks a stage's look-ups against its contract).
+  const PluginInfo* loaded(std::string_view name) const;
 
  private:
   PluginHost();
+  const std::vector<PluginFile>& discovered() const;  // (with the lock held)
+  const PluginInfo& load_file_locked(const std::string& path);
   struct Impl;
   Impl* impl_;
   std::vector<std::string> search_path_;

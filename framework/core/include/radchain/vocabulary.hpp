@@ -1,0 +1,127 @@
+#pragma once
+// The results stages exchange. A stage publishes "<section>.<name>" results; every one that another stage, the
+// framework or the imaging library reads is a Term here, with its SI unit and meaning, so that publisher and
+// reader agree on one spelling and one unit. A plugin declares such a result with Context::declare(term, ...)
+// and reads one with Context::require(term) / find(term); both check the plugin's PluginInfo lists.
+// A new shared result: add a Term here (and to `all` below), list it in the publisher's `publishes` and in the
+// reader's `needs`. Results nobody else reads (a noise term for the report) stay plain strings in their plugin.
+#include <array>
+#include <string>
+#include <string_view>
+
+namespace radchain {
+
+struct Term {
+  std::string_view name;     // "detector.snr"; a criterion's result: "criteria.*.margin" (any criterion)
+  std::string_view unit;     // SI, as udunits spells it ("1" for a ratio)
+  std::string_view meaning;  // one line
+
+  constexpr std::string_view section() const { return name.substr(0, name.rfind('.')); }  // "detector", "criteria.*"
+  constexpr std::string_view key() const { return name.substr(name.rfind('.') + 1); }     // "snr"
+  constexpr bool per_criterion() const { return name.starts_with("criteria.*."); }
+  // The result of this term in one criterion's section: "criteria.detection.margin".
+  std::string in_criterion(std::string_view criterion) const {
+    return "criteria." + std::string(criterion) + "." + std::string(key());
+  }
+  // Whether a qualified result name is this term (for a per-criterion term: in any criterion).
+  constexpr bool matches(std::string_view qualified) const {
+    if (!per_criterion()) return qualified == name;
+    return qualified.starts_with("criteria.") && qualified.size() > 9 + key().size() + 1 &&
+           qualified.ends_with(key()) && qualified[qualified.size() - key().size() - 1] == '.' &&
+           qualified.substr(9, qualified.size() - 9 - key().size() - 1).find('.') == std::string_view::npos;
+  }
+  friend constexpr bool operator==(const Term& a, const Term& b) { return a.name == b.name; }
+};
+
+namespace vocabulary {
+
+// platform
+inline constexpr Term platform_altitude{"platform.altitude", "m", "height of the platform above the ground"};
+inline constexpr Term platform_ground_speed{"platform.ground_speed", "m/s", "speed of the sub-platform point over the ground"};
+inline constexpr Term platform_tilt{"platform.tilt", "rad", "line-of-sight tilt from nadir"};
+
+// source
+inline constexpr Term source_visual_magnitude{"source.visual_magnitude", "1",
+                                              "the source's apparent V magnitude (reference for a target's magnitude)"};
+inline constexpr Term source_illuminance{"source.illuminance", "lx", "the source's illuminance (at 1 AU for the Sun)"};
+inline constexpr Term source_distance{"source.distance", "m", "distance of the source from the target"};
+inline constexpr Term source_band_irradiance{"source.band_irradiance", "W m-2",
+                                             "the source's irradiance in the reporting band E'_s"};
+
+// atmosphere
+inline constexpr Term atmosphere_ground_irradiance{"atmosphere.ground_irradiance", "W m-2",
+                                                   "in-band irradiance on the ground after the down path E_0"};
+
+// target
+inline constexpr Term target_illuminance{"target.illuminance", "lx", "illuminance at the pupil from the point target"};
+inline constexpr Term target_reflectance_difference{"target.reflectance_difference", "1",
+                                                    "reflectance contrast of target and background Δρ"};
+inline constexpr Term target_background_exitance{"target.background_exitance", "W m-2",
+                                                 "in-band exitance of the background M_b"};
+
+// optics
+inline constexpr Term optics_aperture{"optics.aperture", "m", "entrance pupil diameter D"};
+inline constexpr Term optics_obscuration{"optics.obscuration", "1", "linear central obscuration ratio ε"};
+inline constexpr Term optics_collecting_area{"optics.collecting_area", "m2", "unobscured pupil area"};
+inline constexpr Term optics_transmittance{"optics.transmittance", "1", "optics transmittance τ"};
+inline constexpr Term optics_focal_length{"optics.focal_length", "m", "effective focal length f'"};
+inline constexpr Term optics_f_number{"optics.f_number", "1", "focal ratio N = f'/D"};
+inline constexpr Term optics_psf_wavelength{"optics.psf_wavelength", "m", "wavelength of an Airy point-spread function"};
+inline constexpr Term optics_gaussian_fwhm{"optics.gaussian_fwhm", "m", "FWHM of a Gaussian point-spread function"};
+
+// detector
+inline constexpr Term detector_snr{"detector.snr", "1", "signal-to-noise ratio of the target in the detection window"};
+inline constexpr Term detector_integration_time{"detector.integration_time", "s", "integration time of one frame or line"};
+inline constexpr Term detector_signal_electrons{"detector.signal_electrons", "electron",
+                                                "the target's electrons in the detection window"};
+inline constexpr Term detector_image_electrons{"detector.image_electrons", "electron",
+                                               "all of the point image's electrons (before the window's ensquared energy)"};
+inline constexpr Term detector_noise_electrons{"detector.noise_electrons", "electron", "total noise in the detection window"};
+inline constexpr Term detector_sky_electrons_per_pixel{"detector.sky_electrons_per_pixel", "electron",
+                                                       "one pixel's sky background per frame"};
+inline constexpr Term detector_window_pixel_count{"detector.window_pixel_count", "1", "pixels in the detection window"};
+inline constexpr Term detector_ensquared_energy{"detector.ensquared_energy", "1",
+                                                "fraction of the point image inside the detection window"};
+inline constexpr Term detector_signal_irradiance{"detector.signal_irradiance", "W m-2",
+                                                 "in-band focal-plane irradiance of the target contrast E'"};
+inline constexpr Term detector_nee_working{"detector.nee_working", "J m-2", "working noise-equivalent exposure H_nr"};
+inline constexpr Term detector_utilisation_ratio{"detector.utilisation_ratio", "1",
+                                                 "spectral utilisation ratio k_i/k_c of the detector"};
+inline constexpr Term detector_element_size_for_mtf{"detector.element_size_for_mtf", "m",
+                                                    "detector element size V_D in the MTF (Kolobrodov eq. 8)"};
+inline constexpr Term detector_nu_half_contrast{"detector.nu_half_contrast", "m-1",
+                                                "spatial frequency at which the detector MTF is 0.5"};
+inline constexpr Term detector_system_element{"detector.system_element", "m", "system resolution element V_s in the focal plane"};
+inline constexpr Term detector_line_length{"detector.line_length", "m", "length of the detector line l_D"};
+
+// every criterion ("criteria.<name>.…")
+inline constexpr Term criterion_margin{"criteria.*.margin", "1",
+                                       "achieved/required − 1: ≥ 0 passes; the root a [[solve]] finds"};
+inline constexpr Term criterion_threshold{"criteria.*.threshold", "1", "SNR threshold T of a detection criterion"};
+inline constexpr Term criterion_required_quality{"criteria.*.required_quality", "1",
+                                                 "objective quality η that matches the detector MTF"};
+inline constexpr Term criterion_wavelength{"criteria.*.wavelength", "m", "wavelength of the MTF match"};
+inline constexpr Term criterion_ground_element{"criteria.*.ground_element", "m", "ground resolution element δV"};
+
+// Every term, for look-ups by name (describe, the check that a plugin does not declare a term as a plain string).
+inline constexpr std::array all{
+    platform_altitude, platform_ground_speed, platform_tilt, source_visual_magnitude, source_illuminance,
+    source_distance, source_band_irradiance, atmosphere_ground_irradiance, target_illuminance,
+    target_reflectance_difference, target_background_exitance, optics_aperture, optics_obscuration,
+    optics_collecting_area, optics_transmittance, optics_focal_length, optics_f_number, optics_psf_wavelength,
+    optics_gaussian_fwhm, detector_snr, detector_integration_time, detector_signal_electrons, detector_image_electrons,
+    detector_noise_electrons, detector_sky_electrons_per_pixel, detector_window_pixel_count, detector_ensquared_energy,
+    detector_signal_irradiance, detector_nee_working, detector_utilisation_ratio, detector_element_size_for_mtf,
+    detector_nu_half_contrast, detector_system_element, detector_line_length, criterion_margin, criterion_threshold,
+    criterion_required_quality, criterion_wavelength, criterion_ground_element,
+};
+
+// The term a qualified result name is, if any.
+constexpr const Term* term_of(std::string_view qualified) {
+  for (const Term& t : all)
+    if (t.matches(qualified)) return &t;
+  return nullptr;
+}
+
+}  // namespace vocabulary
+}  // namespace radchain
