@@ -1,6 +1,7 @@
 // Shards of a batch job: which points a shard runs, and merging shard files into the unsharded output.
 #include "radchain/batch/shard.hpp"
 
+#include "radchain/batch/catalogue.hpp"
 #include "radchain/error.hpp"
 #include "table_text.hpp"
 
@@ -39,6 +40,9 @@ ShardSpec parse_shard(const std::string& text, const std::string& order) {
   }
   if (shard.index < 1 || shard.index > shard.count)
     throw InputError(SourceLocation{"--shard", 0, 0}, "", text, "expected k/n with 1 <= k <= n, e.g. --shard 2/8");
+  // Each shard is a file to merge: a count beyond this is a typo, and merge allocates a slot per shard.
+  if (shard.count > max_shards)
+    throw InputError(SourceLocation{"--shard", 0, 0}, "", text, fmt::format("at most {} shards", max_shards));
   if (order == "block") {
     shard.order = ShardSpec::Order::block;
   } else if (order == "round-robin") {
@@ -104,7 +108,15 @@ struct ShardReader {
     }
     for (const char* key : {"order", "kind", "points", "format", "job", "types"})
       if (!fields.count(key)) throw fail(fmt::format("shard header has no {}=", key));
+    if (fields["order"] != "block" && fields["order"] != "round-robin")
+      throw fail("shard header: order=" + fields["order"] + " is neither block nor round-robin");
     shard.order = fields["order"] == "round-robin" ? ShardSpec::Order::round_robin : ShardSpec::Order::block;
+    if (fields["kind"] != "catalogue" && fields["kind"] != "sweep")
+      throw fail("shard header: kind=" + fields["kind"] + " is neither catalogue nor sweep");
+    if (fields["format"] != "text" && fields["format"] != "csv" && fields["format"] != "json")
+      throw fail("shard header: format=" + fields["format"] + " is not text, csv or json");
+    if (fields["types"].find_first_not_of("nt") != std::string::npos)
+      throw fail("shard header: types=" + fields["types"] + " has letters other than n and t");
     std::size_t total = 0;
     try {
       total = parse_count(fields["points"]);
@@ -117,6 +129,9 @@ struct ShardReader {
       throw fail("no column line after the shard header");
     columns.erase(columns.begin());
     if (columns.size() != fields["types"].size()) throw fail("the column line does not match types=");
+    // A catalogue table has fixed columns (its summary reads them by position).
+    if (fields["kind"] == "catalogue" && columns != catalogue_layout().columns)
+      throw fail("the column line is not a catalogue's (" + join(catalogue_layout().columns, ",") + ")");
     advance();
   }
 
@@ -131,7 +146,11 @@ struct ShardReader {
       while (tokens >> token) {
         try {
           if (token.rfind("rows=", 0) == 0) recorded_rows = parse_count(token.substr(5));
-          if (token.rfind("exit=", 0) == 0) exit_code = static_cast<int>(parse_count(token.substr(5)));
+          if (token.rfind("exit=", 0) == 0) {
+            const std::size_t code = parse_count(token.substr(5));
+            if (code > 3) throw std::invalid_argument(token);  // radchain's exit codes are 0 to 3
+            exit_code = static_cast<int>(code);
+          }
         } catch (const std::invalid_argument&) {
           throw fail("bad \"# end\" line: " + line);
         }

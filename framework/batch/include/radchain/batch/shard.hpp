@@ -34,6 +34,7 @@ struct ShardSpec {
   Order order = Order::block;
   bool active() const { return index != 0; }
 };
+inline constexpr std::size_t max_shards = 100000;
 // "2/8" with order "block" (contiguous) or "round-robin" (every n-th point); throws InputError.
 ShardSpec parse_shard(const std::string& text, const std::string& order = "block");
 std::string to_string(ShardSpec::Order order);

@@ -1,0 +1,71 @@
+// Regressions (issue 18): crafted shard files and shard counts. merge validates every header field and row
+// against the job it belongs to and refuses what does not fit with one located line and exit 2 — it never
+// crashes (a shard count near 2^64 made it allocate a slot per shard; a catalogue shard with fewer columns than
+// a catalogue has made its summary read past the row).
+#include "cli_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+namespace {
+using namespace radchain::test;
+
+std::size_t lines_of(const std::string& text) { return count_lines(text); }
+
+// A valid one-shard sweep file of the SBV sensor, written by radchain itself.
+std::string real_shard(const Scratch& scratch) {
+  const fs::path file = scratch / "real.shard";
+  const CliResult r = run_cli(scratch, "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:4' --results target.magnitude --shard 1/1 --out '" +
+                                           file.string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return read_text(file);
+}
+
+CliResult merge_text(const Scratch& scratch, const std::string& name, const std::string& text) {
+  const fs::path file = scratch / name;
+  write_text(file, text);
+  return run_cli(scratch, "merge '" + file.string() + "'");
+}
+
+TEST(MergeHostile, AShardCountNear2To64IsRefusedNotACrash) {
+  Scratch scratch;
+  std::string text = real_shard(scratch);
+  ASSERT_NE(text.find("shard 1/1 "), std::string::npos);
+  text.replace(text.find("shard 1/1 "), 10, "shard 1/18446744073709551615 ");
+  const CliResult r = merge_text(scratch, "huge.shard", text);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(lines_of(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("at most 100000 shards"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  // and sweep refuses to write such a shard in the first place
+  const CliResult sweep = run_cli(scratch, "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:4' --shard 1/18446744073709551615");
+  EXPECT_EQ(sweep.exit_code, 2);
+  EXPECT_NE(sweep.err.find("at most 100000 shards"), std::string::npos) << sweep.err;
+}
+
+TEST(MergeHostile, ACatalogueShardWithTooFewColumnsIsRefused) {
+  Scratch scratch;
+  const std::string text =
+      "# radchain shard 1/1 order=block kind=catalogue points=1 format=text job=0000000000000000 types=tt\n"
+      "point,sensor,result\n0,a,b\n# end rows=1 exit=0\n";
+  const CliResult r = merge_text(scratch, "short.shard", text);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("is not a catalogue's"), std::string::npos) << r.err;
+}
+
+TEST(MergeHostile, HeaderFieldsAreChecked) {
+  Scratch scratch;
+  const std::string text = real_shard(scratch);
+  const std::pair<std::string, std::string> edits[] = {
+      {"kind=sweep", "kind=sweeep"}, {"format=csv", "format=xml"}, {"order=block", "order=random"}, {"exit=0", "exit=77"}};
+  for (const auto& [from, to] : edits) {
+    std::string bad = text;
+    ASSERT_NE(bad.find(from), std::string::npos) << from;
+    bad.replace(bad.find(from), from.size(), to);
+    const CliResult r = merge_text(scratch, "bad.shard", bad);
+    EXPECT_EQ(r.exit_code, 2) << to << ": " << r.err;
+    EXPECT_EQ(lines_of(r.err), 1u) << r.err;
+    EXPECT_TRUE(r.out.empty()) << to;
+  }
+}
+
+}  // namespace
