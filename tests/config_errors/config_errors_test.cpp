@@ -2,6 +2,7 @@
 // with one thing wrong (its first line says what), and cases/<name>.expected, the one line the CLI must print
 // on stderr. The CLI runs with cases/ as working directory so messages carry relative paths; the few absolute
 // paths it prints (plugin libraries, the plugin search path) and the version are replaced by placeholders.
+#include "radchain/plugin.hpp"
 #include "radchain/version.hpp"
 
 #include <gtest/gtest.h>
@@ -139,12 +140,10 @@ std::string plugins_of_kind(const std::string& kind_directory, bool quoted) {
 // Expected lines may name the plugins of a kind as <optics plugins> or <quoted optics plugins>, so that adding
 // a plugin does not rewrite the golden files.
 std::string with_plugin_lists(std::string expected) {
-  const std::pair<const char*, const char*> kinds[] = {{"sources", "source"},     {"targets", "target"},
-                                                       {"atmospheres", "atmosphere"}, {"optics", "optics"},
-                                                       {"detectors", "detector"},   {"criteria", "criterion"}};
-  for (const auto& [directory, kind] : kinds) {
-    replace_all(expected, std::string("<quoted ") + kind + " plugins>", plugins_of_kind(directory, true));
-    replace_all(expected, std::string("<") + kind + " plugins>", plugins_of_kind(directory, false));
+  for (const radchain::KindInfo& k : radchain::kinds) {  // a kind's folder is its name
+    const std::string kind(k.name);
+    replace_all(expected, "<quoted " + kind + " plugins>", plugins_of_kind(kind, true));
+    replace_all(expected, "<" + kind + " plugins>", plugins_of_kind(kind, false));
   }
   return expected;
 }
