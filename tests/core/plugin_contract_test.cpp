@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -133,6 +134,40 @@ TEST(PluginContract, DeclaringAnUnlistedOrMisspelledTermIsAProgrammingError) {
   EXPECT_EQ(run.results.info(margin).name, "criteria.detection.margin");
   EXPECT_EQ(run.results.info(margin).si_unit, "1");
   EXPECT_NO_THROW(c.declare("detected", "1", "x"));  // a result only the report shows
+}
+
+// `radchain describe ...` (the test environment's plugin path), stdout.
+std::string describe(const std::string& what) {
+  std::string out;
+  if (FILE* pipe = ::popen(("'" RADCHAIN_CLI "' describe " + what + " 2>&1").c_str(), "r")) {
+    char buffer[4096];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+    ::pclose(pipe);
+  }
+  return out;
+}
+
+TEST(DescribeContract, APluginShowsWhatItPublishesAndNeedsWithUnitsAndMeanings) {
+  const std::string out = describe("snr_threshold");
+  const auto publishes = out.find("\npublishes:\n"), needs = out.find("\nneeds:\n"), example = out.find("\nexample:\n");
+  ASSERT_NE(publishes, std::string::npos) << out;
+  ASSERT_NE(needs, std::string::npos) << out;
+  ASSERT_LT(publishes, needs);
+  ASSERT_LT(needs, example);
+  const std::string published = out.substr(publishes, needs - publishes), needed = out.substr(needs, example - needs);
+  EXPECT_NE(published.find("criteria.<name>.margin"), std::string::npos) << published;
+  EXPECT_NE(published.find(std::string(vocabulary::criterion_margin.meaning)), std::string::npos) << published;
+  EXPECT_NE(needed.find("detector.snr  [1]  " + std::string(vocabulary::detector_snr.meaning)), std::string::npos) << needed;
+}
+
+TEST(DescribeContract, AKindListsItsPluginsWithTheirSummaries) {
+  for (const char* kind : {"criterion", "criteria"}) {
+    const std::string out = describe(kind);
+    SCOPED_TRACE(out);
+    EXPECT_EQ(out.rfind("criterion plugins", 0), 0u);
+    for (const PluginInfo* info : bundled_plugins())
+      EXPECT_EQ(out.find(info->summary) != std::string::npos, info->kind == Kind::criterion) << info->name;
+  }
 }
 
 TEST(PluginHostDiscovery, ScansOncePerSearchPath) {
