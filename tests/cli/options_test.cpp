@@ -74,6 +74,18 @@ TEST(CliSolvedOverride, CompareWarnsToo) {
   EXPECT_EQ(r.err.rfind("radchain: warning: --set target.magnitude=14", 0), 0u) << r.err;
 }
 
+TEST(CliSolvedOverride, SweepWarnsForAFixedSetOnASolvedUnknown) {
+  Scratch scratch;
+  const std::string axis = " --set \"optics.aperture=15 cm:30 cm:3\" --results target.magnitude";
+  const CliResult r = run_cli(scratch, "sweep '" + sbv_file + "'" + axis + " --set target.magnitude=14");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("radchain: warning: --set target.magnitude=14", 0), 0u) << r.err;
+  const CliResult quiet = run_cli(scratch, "sweep '" + sbv_file + "'" + axis);
+  EXPECT_EQ(quiet.err, "");
+  EXPECT_EQ(quiet.out, r.out);  // the solve overwrote the value set at every point
+}
+
 // The executable links neither OpenImageIO nor FFTW: render, validate and mtf load them through the module.
 TEST(CliImagingModule, TheExecutableLinksNoImagingLibraries) {
   Scratch scratch;

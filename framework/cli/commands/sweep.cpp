@@ -41,6 +41,10 @@ int sweep(const SweepCommand& command) {
   Progress progress("sweep");
   options.progress = progress.counter();
   Sweep sweep(options);
+  // The file as swept (fixed overrides applied): its solves and its name, and a warning for a fixed --set on an
+  // unknown that a [[solve]] overwrites at every point (Sweep refuses an axis on one).
+  const Chain chain = load_sensor(options.sensor_file, options.overrides);
+  warn_about_solved_overrides(chain.solves, options.overrides, std::cerr);
 
   // The plotted series: --results, else the solved unknowns, else the SNR, else the first result.
   std::vector<std::size_t> plotted;
@@ -52,7 +56,6 @@ int sweep(const SweepCommand& command) {
     if (!command.results.empty()) {
       for (std::size_t i = 0; i < names.size(); ++i) plotted.push_back(i);
     } else {
-      Chain chain = load_sensor(options.sensor_file, options.overrides);
       for (const auto& s : chain.solves)
         if (index_of(s.unknown) < names.size()) plotted.push_back(index_of(s.unknown));
       if (plotted.empty() && index_of("detector.snr") < names.size()) plotted.push_back(index_of("detector.snr"));
@@ -79,7 +82,6 @@ int sweep(const SweepCommand& command) {
     const SweepAxis& axis = sweep.axes().front();
     const std::string x_label = axis.unit.empty() ? axis.key : axis.key + " [" + axis.unit + "]";
     try {
-      Chain chain = load_sensor(options.sensor_file, options.overrides);
       plot_sweep(command.plot, chain.sensor_name + " — " + options.sensor_file, x_label, x, series);
     } catch (const std::runtime_error& error) {
       if (dynamic_cast<const InputError*>(&error)) throw;
