@@ -208,6 +208,13 @@ PluginInfo make_plugin_info(Kind kind, const char* name, PluginDescription d) {
 //                                  .publishes = {vocabulary::criterion_margin}, .needs = {vocabulary::detector_snr}})
 // radchain_add_plugin() defines RADCHAIN_PLUGIN_NAME ("snr_threshold") and RADCHAIN_PLUGIN_KIND (criterion) from
 // the file's path. It exports two symbols: the ABI number and the Boost.DLL alias radchain_plugin_info.
+// Outside radchain_add_plugin() the compiler's error names the fix.
+#ifndef RADCHAIN_PLUGIN_NAME
+#define RADCHAIN_PLUGIN_NAME radchain_plugin_name_is_defined_by_cmake_radchain_add_plugin
+#endif
+#ifndef RADCHAIN_PLUGIN_KIND
+#define RADCHAIN_PLUGIN_KIND radchain_plugin_kind_is_defined_by_cmake_radchain_add_plugin
+#endif
 #define RADCHAIN_PLUGIN(StageType, ...)                                                                        \
   static const ::radchain::PluginInfo& radchain_plugin_entry() {                                               \
     static const ::radchain::PluginInfo info = ::radchain::make_plugin_info<StageType>(                        \
