@@ -70,6 +70,8 @@ const Case cases[] = {
     {"solve_bracket_one_value"},
     {"set_bad_key", "", "--set 'optics.apperture=\"20 cm\"'"},
     {"set_unknown_section", "", "--set 'optic.aperture=\"20 cm\"'"},
+    {"look_past_horizon"},
+    {"reflectance_above_one"},
 };
 
 // How a case reads in test names and ctest listings (instead of a byte dump).

@@ -103,6 +103,26 @@ inline constexpr Term criterion_required_quality{"criteria.*.required_quality", 
 inline constexpr Term criterion_wavelength{"criteria.*.wavelength", "m", "wavelength of the MTF match"};
 inline constexpr Term criterion_ground_element{"criteria.*.ground_element", "m", "ground resolution element δV"};
 
+// Earth-observation geometry (issue 14)
+inline constexpr Term platform_roll{"platform.roll", "rad", "look angle about the along-track axis (across-track)"};
+inline constexpr Term platform_pitch{"platform.pitch", "rad", "look angle about the across-track axis (along-track)"};
+inline constexpr Term platform_slant_range{"platform.slant_range", "m",
+                                           "distance from the platform to the ground point of the look (spherical Earth)"};
+inline constexpr Term platform_view_zenith_angle{"platform.view_zenith_angle", "rad",
+                                                 "zenith angle of the line of sight at the ground point"};
+inline constexpr Term platform_earth_radius{"platform.earth_radius", "m",
+                                            "radius of the spherical Earth of the geometry"};
+inline constexpr Term detector_pixel_pitch{"detector.pixel_pitch", "m",
+                                           "centre-to-centre distance of the pixels (one sample)"};
+inline constexpr Term criterion_gsd_nadir{"criteria.*.gsd_nadir", "m",
+                                          "pixel-pitch ground sample distance at nadir h p/f'"};
+inline constexpr Term criterion_gsd_across_track{"criteria.*.gsd_across_track", "m",
+                                                 "across-track ground sample distance at the look"};
+inline constexpr Term criterion_gsd_along_track{"criteria.*.gsd_along_track", "m",
+                                                "along-track ground sample distance at the look"};
+inline constexpr Term criterion_niirs{"criteria.*.niirs", "1", "predicted NIIRS (General Image Quality Equation)"};
+inline constexpr Term criterion_rer{"criteria.*.rer", "1", "relative edge response of the system MTF (per sample)"};
+
 // Every term, for look-ups by name (describe, the check that a plugin does not declare a term as a plain string).
 inline constexpr std::array all{
     platform_altitude, platform_ground_speed, platform_tilt, source_visual_magnitude, source_illuminance,
@@ -114,6 +134,10 @@ inline constexpr std::array all{
     detector_signal_irradiance, detector_nee_working, detector_utilisation_ratio, detector_element_size_for_mtf,
     detector_nu_half_contrast, detector_system_element, detector_line_length, criterion_margin, criterion_threshold,
     criterion_required_quality, criterion_wavelength, criterion_ground_element,
+    // Earth-observation geometry (issue 14)
+    platform_roll, platform_pitch, platform_slant_range, platform_view_zenith_angle, platform_earth_radius,
+    detector_pixel_pitch, criterion_gsd_nadir, criterion_gsd_across_track, criterion_gsd_along_track,
+    criterion_niirs, criterion_rer,
 };
 
 // The term a qualified result name is, if any.

@@ -184,4 +184,37 @@ double kolobrodov_system_element_ratio(double sinc_root, double contrast) {
   return 1.0 / r;
 }
 
+// ---- MTF budget (sources in mtf.hpp) ----------------------------------------------------------------------
+
+double jitter_mtf(double frequency_per_m, double jitter_rms_m) {
+  return std::exp(-2 * pi * pi * jitter_rms_m * jitter_rms_m * frequency_per_m * frequency_per_m);
+}
+
+double linear_smear_mtf(double frequency_per_m, double smear_length_m) {
+  return std::abs(sinc_pi(smear_length_m * frequency_per_m));
+}
+
+double diffusion_mtf(double frequency_per_m, double diffusion_rms_m) {
+  return std::exp(-2 * pi * pi * diffusion_rms_m * diffusion_rms_m * frequency_per_m * frequency_per_m);
+}
+
+double wavefront_error_mtf(double frequency_per_m, double wavelength_m, double f_number, double wfe_rms_waves) {
+  const double x = std::abs(frequency_per_m) / diffraction_cutoff_frequency_per_m(wavelength_m, f_number);
+  if (x >= 1) return 0.0;
+  const double w = wfe_rms_waves / 0.18;
+  return std::max(0.0, 1 - w * w * (1 - 4 * (x - 0.5) * (x - 0.5)));
+}
+
+double tdi_synchronisation_mtf(double frequency_per_m, double stages, double mismatch_fraction, double pixel_pitch_m) {
+  if (!(stages >= 1)) throw std::invalid_argument("TDI: at least one stage, got " + std::to_string(stages));
+  const double a = pi * mismatch_fraction * pixel_pitch_m * frequency_per_m;
+  if (std::abs(std::sin(a)) < 1e-12) return 1.0;
+  return std::abs(std::sin(stages * a) / (stages * std::sin(a)));
+}
+
+double nyquist_frequency_per_m(double pixel_pitch_m) {
+  if (!(pixel_pitch_m > 0)) throw std::invalid_argument("pixel pitch must be positive");
+  return 0.5 / pixel_pitch_m;
+}
+
 }  // namespace radchain::physics

@@ -90,4 +90,31 @@ double kolobrodov_eq15_residual(double system_to_detector_ratio, double sinc_roo
 double kolobrodov_system_element_ratio(double sinc_root, double contrast = 0.5);
 inline constexpr double kolobrodov_system_element_ratio_printed = 1.49;
 
+// ---- MTF budget of an Earth-observation camera (issue 14) -------------------------------------------------
+// Each factor is the modulus of the transfer function of one blur, frequency in cycles/m; the system MTF is
+// their product (linear shift-invariant cascade: Goodman 2005 ch. 6; R. D. Fiete, Modeling the Imaging Chain of
+// Digital Cameras, SPIE TT92 (2010), ch. 5-6; G. C. Holst, Electro-Optical Imaging System Performance, 5th ed.
+// (2008), ch. 10). Diffraction with central obscuration and the pixel aperture are above.
+
+// Gaussian jitter of rms σ on the focal plane (random high-frequency line-of-sight motion):
+// MTF = exp(−2π² σ² ν²) (Fiete 2010 ch. 6; Holst 2008 ch. 10).
+double jitter_mtf(double frequency_per_m, double jitter_rms_m);
+// Linear smear of length d during the integration: |sinc(π d ν)| (Fiete 2010 ch. 6; Holst 2008 ch. 10).
+double linear_smear_mtf(double frequency_per_m, double smear_length_m);
+// Charge diffusion / crosstalk as a Gaussian spread of rms σ_d: exp(−2π² σ_d² ν²) (the Gaussian kernel model of
+// lateral diffusion, Holst 2008 ch. 10, detector diffusion; a first-order model — measured diffusion MTFs of
+// thick devices fall faster at low frequency).
+double diffusion_mtf(double frequency_per_m, double diffusion_rms_m);
+// Wavefront error W_rms (waves) as Shannon's aberration transfer factor on the diffraction MTF:
+// ATF(x) = 1 − (W_rms/0.18)² [1 − 4 (x − ½)²], x = ν/ν_c, clamped at 0 (R. R. Shannon, The Art and Science of
+// Optical Design (1997), the Hufnagel approximation; Fiete 2010 ch. 5). Valid for W_rms ≲ 0.18 waves.
+double wavefront_error_mtf(double frequency_per_m, double wavelength_m, double f_number, double wfe_rms_waves);
+// TDI synchronisation: N stages, each shifting the charge a fraction `mismatch` of a pixel pitch p away from the
+// image motion; the N sub-images add with shifts k·mismatch·p, so MTF = |sin(π N δ ν)/(N sin(π δ ν))|,
+// δ = mismatch·p (a Dirichlet kernel; H.-S. Wong, Y. L. Yao, E. S. Schlig, "TDI charge-coupled devices: design
+// and applications", IBM J. Res. Dev. 36 (1992) 83; → |sinc(π N δ ν)| for small δ).
+double tdi_synchronisation_mtf(double frequency_per_m, double stages, double mismatch_fraction, double pixel_pitch_m);
+// Nyquist frequency of a pixel pitch p: 1/(2p).
+double nyquist_frequency_per_m(double pixel_pitch_m);
+
 }  // namespace radchain::physics

@@ -1,0 +1,120 @@
+// Spherical-Earth viewing geometry (see earth_geometry.hpp for the sources).
+#include "radchain/physics/earth_geometry.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+namespace radchain::physics {
+
+namespace {
+
+using Vec = std::array<double, 3>;
+
+double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec cross(const Vec& a, const Vec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
+
+void require_positive(double value, const char* what) {
+  if (!(value > 0)) throw std::invalid_argument(fmt::format("{} must be positive, got {}", what, value));
+}
+
+// Ground point of the line of sight (roll φ, pitch ψ): Earth centre at the origin, satellite at (0, 0, R + h),
+// axes (along, across, up); the look direction is (sin ψ, cos ψ sin φ, −cos ψ cos φ).
+Vec ground_point(double altitude_m, double roll, double pitch, double earth_radius_m) {
+  const Vec d{std::sin(pitch), std::cos(pitch) * std::sin(roll), -std::cos(pitch) * std::cos(roll)};
+  const double s = earth_radius_m + altitude_m;
+  const double t = slant_range_m(altitude_m, std::acos(std::clamp(-d[2], -1.0, 1.0)), earth_radius_m);
+  return {t * d[0], t * d[1], s + t * d[2]};
+}
+
+}  // namespace
+
+double pixel_pitch_gsd_m(double altitude_m, double pixel_pitch_m, double focal_length_m) {
+  require_positive(focal_length_m, "focal length");
+  return altitude_m * pixel_pitch_m / focal_length_m;
+}
+
+double off_nadir_angle_rad(double roll_rad, double pitch_rad) {
+  return std::acos(std::clamp(std::cos(roll_rad) * std::cos(pitch_rad), -1.0, 1.0));
+}
+
+double horizon_off_nadir_angle_rad(double altitude_m, double earth_radius_m) {
+  require_positive(altitude_m, "altitude");
+  return std::asin(earth_radius_m / (earth_radius_m + altitude_m));
+}
+
+double slant_range_m(double altitude_m, double off_nadir_rad, double earth_radius_m) {
+  require_positive(altitude_m, "altitude");
+  require_positive(earth_radius_m, "Earth radius");
+  const double s = earth_radius_m + altitude_m;
+  const double sin_t = std::sin(off_nadir_rad), cos_t = std::cos(off_nadir_rad);
+  const double discriminant = earth_radius_m * earth_radius_m - s * s * sin_t * sin_t;
+  if (discriminant < 0 || cos_t <= 0)
+    throw LookPastHorizon(fmt::format(
+        "a line of sight {:.4g} deg off nadir misses the Earth: the horizon is {:.4g} deg off nadir at {:.4g} km",
+        off_nadir_rad * 180 / 3.141592653589793, horizon_off_nadir_angle_rad(altitude_m, earth_radius_m) * 180 / 3.141592653589793,
+        altitude_m / 1e3));
+  // The nearer root of |S + t d|² = R²; written as (s² − R²)/(s cos θ + √·) to keep precision at nadir.
+  return (s * s - earth_radius_m * earth_radius_m) / (s * cos_t + std::sqrt(discriminant));
+}
+
+double view_zenith_angle_rad(double altitude_m, double off_nadir_rad, double earth_radius_m) {
+  slant_range_m(altitude_m, off_nadir_rad, earth_radius_m);  // the horizon check
+  return std::asin(std::min(1.0, (earth_radius_m + altitude_m) * std::sin(off_nadir_rad) / earth_radius_m));
+}
+
+double earth_central_angle_rad(double altitude_m, double off_nadir_rad, double earth_radius_m) {
+  return view_zenith_angle_rad(altitude_m, off_nadir_rad, earth_radius_m) - off_nadir_rad;
+}
+
+double gsd_in_look_plane_m(double altitude_m, double off_nadir_rad, double angular_sample_rad, double earth_radius_m) {
+  const double rho = slant_range_m(altitude_m, off_nadir_rad, earth_radius_m);
+  return rho * angular_sample_rad / std::cos(view_zenith_angle_rad(altitude_m, off_nadir_rad, earth_radius_m));
+}
+
+double gsd_across_look_plane_m(double altitude_m, double off_nadir_rad, double angular_sample_rad,
+                               double earth_radius_m) {
+  return slant_range_m(altitude_m, off_nadir_rad, earth_radius_m) * angular_sample_rad;
+}
+
+double ground_distance_between_looks_m(double altitude_m, double roll1_rad, double pitch1_rad, double roll2_rad,
+                                       double pitch2_rad, double earth_radius_m) {
+  const Vec a = ground_point(altitude_m, roll1_rad, pitch1_rad, earth_radius_m);
+  const Vec b = ground_point(altitude_m, roll2_rad, pitch2_rad, earth_radius_m);
+  // The angle between the two radius vectors by atan2(|a × b|, a · b): accurate for metre-scale separations.
+  return earth_radius_m * std::atan2(norm(cross(a, b)), dot(a, b));
+}
+
+double gsd_across_track_m(double altitude_m, double roll_rad, double pitch_rad, double angular_sample_rad,
+                          double earth_radius_m) {
+  return ground_distance_between_looks_m(altitude_m, roll_rad - angular_sample_rad / 2, pitch_rad,
+                                         roll_rad + angular_sample_rad / 2, pitch_rad, earth_radius_m);
+}
+
+double gsd_along_track_m(double altitude_m, double roll_rad, double pitch_rad, double angular_sample_rad,
+                         double earth_radius_m) {
+  return ground_distance_between_looks_m(altitude_m, roll_rad, pitch_rad - angular_sample_rad / 2, roll_rad,
+                                         pitch_rad + angular_sample_rad / 2, earth_radius_m);
+}
+
+double swath_m(double altitude_m, double roll_rad, double pitch_rad, double half_field_rad, double earth_radius_m) {
+  return ground_distance_between_looks_m(altitude_m, roll_rad - half_field_rad, pitch_rad, roll_rad + half_field_rad,
+                                         pitch_rad, earth_radius_m);
+}
+
+double half_field_angle_rad(double line_length_m, double focal_length_m) {
+  require_positive(focal_length_m, "focal length");
+  return std::atan(line_length_m / (2 * focal_length_m));
+}
+
+double line_time_s(double along_track_gsd_m, double ground_speed_m_s) {
+  require_positive(ground_speed_m_s, "ground speed");
+  return along_track_gsd_m / ground_speed_m_s;
+}
+
+}  // namespace radchain::physics

@@ -1,0 +1,155 @@
+// Image-quality requirement as a NIIRS from the General Image Quality Equation (GIQE-5, NGA 2015; GIQE-4,
+// Leachtenauer et al. 1997 as an option), evaluated from
+//   GSD  the geometric mean of the across- and along-track pixel-pitch GSDs at the platform's look (spherical Earth),
+//   RER  the relative edge response of the system MTF: diffraction of the (obscured) pupil at `wavelength` × the
+//        pixel aperture × jitter × linear smear × diffusion × wavefront error × TDI synchronisation
+//        (physics/mtf.hpp), the edge integrated from the MTF (physics/giqe.hpp) — or a measured `rer`,
+//   H    the edge overshoot of the same edge (GIQE-4 only),
+//   SNR  the detector's detector.snr, or `snr` given here.
+//   margin = NIIRS / NIIRS_required − 1   (≥ 0 passes)
+// A [[solve]] on optics.aperture (the diffraction MTF, hence RER) or platform.altitude (GSD) finds the design for a
+// NIIRS. Mode "giqe5" is the default (DESIGN.md §8: the standard a practitioner uses today).
+#include "radchain/physics/earth_geometry.hpp"
+#include "radchain/physics/giqe.hpp"
+#include "radchain/physics/mtf.hpp"
+#include "radchain/physics/pushbroom.hpp"
+#include "radchain/plugin.hpp"
+
+#include <cmath>
+
+namespace {
+using namespace radchain;
+
+const Schema& schema() {
+  static const Schema s = {
+      number("niirs", "5").needed().above(0).at_most(10).described("required NIIRS"),
+      choice("equation", {"giqe5", "giqe4"}).fallback("giqe5").described("GIQE version: 5 (NGA 2015) or 4 (Leachtenauer 1997)"),
+      quantity("pixel_pitch", "m", "8 um").above(0)
+          .described("pixel pitch p, one sample (default: the detector's detector.pixel_pitch)"),
+      quantity("wavelength", "m", "0.65 um").needed().above(0).described("wavelength of the diffraction MTF (band centre)"),
+      quantity("jitter_rms", "m", "1 um").fallback("0 m").at_least(0).described("rms line-of-sight jitter on the focal plane"),
+      number("smear_pixels", "0.2").fallback("0").at_least(0).described("linear smear during the integration, in pixels"),
+      quantity("diffusion_rms", "m", "1 um").fallback("0 m").at_least(0).described("rms of a Gaussian charge-diffusion spread"),
+      number("wavefront_error", "0.05").fallback("0").at_least(0).below(0.18)
+          .described("rms wavefront error in waves (Shannon's aberration transfer factor)"),
+      number("tdi_stages", "32").fallback("1").at_least(1).described("TDI stages for the synchronisation MTF"),
+      number("tdi_mismatch", "0.01").fallback("0").at_least(0).below(1)
+          .described("TDI line-rate mismatch per stage, as a fraction of a pixel"),
+      number("rer", "0.5").above(0).at_most(1.5).described("measured relative edge response (replaces the MTF budget's)"),
+      number("snr", "50").above(0).described("SNR of the reference target (default: the detector's detector.snr)"),
+      number("noise_gain", "1").fallback("1").above(0).described("GIQE-4 noise gain G of the processing (1: none)"),
+  };
+  return s;
+}
+
+class Giqe final : public Stage {
+ public:
+  explicit Giqe(const Params& p)
+      : params_(p), required_(p.handle("niirs")), pitch_(p.handle("pixel_pitch")), wavelength_(p.handle("wavelength")),
+        jitter_(p.handle("jitter_rms")), smear_(p.handle("smear_pixels")), diffusion_(p.handle("diffusion_rms")),
+        wfe_(p.handle("wavefront_error")), tdi_stages_(p.handle("tdi_stages")), tdi_mismatch_(p.handle("tdi_mismatch")),
+        rer_(p.handle("rer")), snr_(p.handle("snr")), noise_gain_(p.handle("noise_gain")),
+        giqe4_(p.text("equation") == "giqe4") {
+    if (!giqe4_ && p.given("noise_gain")) p.reject("noise_gain", "is a GIQE-4 term; set equation = \"giqe4\"");
+  }
+
+  void prepare(Context& c) override {
+    altitude_ = c.require(vocabulary::platform_altitude);
+    tilt_ = c.require(vocabulary::platform_tilt);
+    roll_ = c.find(vocabulary::platform_roll);
+    pitch_angle_ = c.find(vocabulary::platform_pitch);
+    radius_ = c.find(vocabulary::platform_earth_radius);
+    focal_ = c.require(vocabulary::optics_focal_length);
+    f_number_ = c.require(vocabulary::optics_f_number);
+    obscuration_ = c.find(vocabulary::optics_obscuration);
+    pitch_term_ = params_.has("pixel_pitch") ? std::nullopt : c.find(vocabulary::detector_pixel_pitch);
+    if (!params_.has("pixel_pitch") && !pitch_term_)
+      params_.reject("niirs", "no pixel pitch: give pixel_pitch here, or use a detector that publishes detector.pixel_pitch");
+    detector_snr_ = params_.has("snr") ? std::nullopt : c.find(vocabulary::detector_snr);
+    if (!params_.has("snr") && !detector_snr_)
+      params_.reject("snr", "no SNR: give snr here, or use a detector that publishes detector.snr");
+    id_gsd_ = c.declare("gsd_geometric_mean", "m", "√(GSD_across · GSD_along) at the look, spherical Earth", "m");
+    id_gsd_inch_ = c.declare("gsd_inches", "1", "GSD / 0.0254 m (the GIQE's unit)");
+    id_rer_ = c.declare(vocabulary::criterion_rer, params_.has("rer") ? "input (measured)" : "ER(½) − ER(−½) of the system MTF");
+    id_overshoot_ = c.declare("overshoot", "1", "max ER on [1, 3] samples, or ER(1.25) if monotonic (GIQE-4's H)");
+    id_snr_ = c.declare("snr", "1", params_.has("snr") ? "input" : "= detector.snr");
+    id_niirs_ = c.declare(vocabulary::criterion_niirs,
+                          giqe4_ ? "GIQE-4, Leachtenauer et al. 1997 eq. (2)" : "GIQE-5, NGA GIQE v5.0 (2015)");
+    id_required_ = c.declare("required_niirs", "1", "input");
+    id_margin_ = c.declare(vocabulary::criterion_margin, "NIIRS / NIIRS_required − 1");
+    id_nyquist_ = c.declare("nyquist_frequency", "m-1", "1/(2p)", "mm-1");
+    id_mtf_system_ = c.declare("mtf_nyquist_system", "1", "product of the components at Nyquist");
+    id_mtf_diffraction_ = c.declare("mtf_nyquist_diffraction", "1", "annular pupil (O'Neill 1956) at Nyquist");
+    id_mtf_pixel_ = c.declare("mtf_nyquist_pixel", "1", "|sinc(π p ν)| at Nyquist = 2/π");
+    id_mtf_other_ = c.declare("mtf_nyquist_other", "1", "jitter × smear × diffusion × wavefront × TDI at Nyquist");
+    id_q_ = c.declare("q_factor", "1", "Q = λN/p (sampling of the optics)");
+  }
+
+  void evaluate(Context& c) override {
+    const double h = c.results.value(altitude_), f = c.results.value(focal_);
+    const double p = pitch_term_ ? c.results.value(*pitch_term_) : *pitch_;
+    const double r = radius_ ? c.results.value(*radius_) : physics::earth_mean_radius_m;
+    const double roll = roll_ ? c.results.value(*roll_) : c.results.value(tilt_);
+    const double pitch = pitch_angle_ ? c.results.value(*pitch_angle_) : 0.0;
+    const double ifov = p / f;
+    const double gsd = std::sqrt(physics::gsd_across_track_m(h, roll, pitch, ifov, r) *
+                                 physics::gsd_along_track_m(h, roll, pitch, ifov, r));
+    const double n = c.results.value(f_number_), lambda = *wavelength_;
+    const double eps = obscuration_ ? c.results.value(*obscuration_) : 0.0;
+    // The MTF in cycles per sample u (ν = u/p).
+    auto others = [&](double nu) {
+      return physics::jitter_mtf(nu, *jitter_) * physics::linear_smear_mtf(nu, *smear_ * p) *
+             physics::diffusion_mtf(nu, *diffusion_) * physics::wavefront_error_mtf(nu, lambda, n, *wfe_) *
+             physics::tdi_synchronisation_mtf(nu, *tdi_stages_, *tdi_mismatch_, p);
+    };
+    auto system = [&](double u) {
+      const double nu = u / p;
+      return physics::diffraction_mtf(nu, lambda, n, eps) * physics::detector_pixel_mtf(nu, p) * others(nu);
+    };
+    const double cutoff_samples = p * physics::diffraction_cutoff_frequency_per_m(lambda, n);
+    constexpr int panels = 1000;
+    const double rer = params_.has("rer") ? *rer_ : physics::relative_edge_response(system, cutoff_samples, panels);
+    const double overshoot = physics::edge_overshoot(system, cutoff_samples, panels);
+    const double snr = params_.has("snr") ? *snr_ : c.results.value(*detector_snr_);
+    const double niirs = giqe4_ ? physics::giqe4_niirs(gsd, rer, overshoot, *noise_gain_, snr)
+                                : physics::giqe5_niirs(gsd, rer, snr);
+    const double nyquist = physics::nyquist_frequency_per_m(p);
+    c.results.set(id_gsd_, gsd);
+    c.results.set(id_gsd_inch_, gsd / physics::metres_per_inch);
+    c.results.set(id_rer_, rer);
+    c.results.set(id_overshoot_, overshoot);
+    c.results.set(id_snr_, snr);
+    c.results.set(id_niirs_, niirs);
+    c.results.set(id_required_, *required_);
+    c.results.set(id_margin_, niirs / *required_ - 1.0);
+    c.results.set(id_nyquist_, nyquist);
+    c.results.set(id_mtf_system_, system(0.5));
+    c.results.set(id_mtf_diffraction_, physics::diffraction_mtf(nyquist, lambda, n, eps));
+    c.results.set(id_mtf_pixel_, physics::detector_pixel_mtf(nyquist, p));
+    c.results.set(id_mtf_other_, others(nyquist));
+    c.results.set(id_q_, lambda * n / p);
+  }
+
+ private:
+  const Params& params_;
+  const double *required_, *pitch_, *wavelength_, *jitter_, *smear_, *diffusion_, *wfe_, *tdi_stages_, *tdi_mismatch_,
+      *rer_, *snr_, *noise_gain_;
+  bool giqe4_;
+  ResultId altitude_{}, tilt_{}, focal_{}, f_number_{};
+  std::optional<ResultId> roll_, pitch_angle_, radius_, obscuration_, detector_snr_, pitch_term_;
+  ResultId id_gsd_{}, id_gsd_inch_{}, id_rer_{}, id_overshoot_{}, id_snr_{}, id_niirs_{}, id_required_{}, id_margin_{},
+      id_nyquist_{}, id_mtf_system_{}, id_mtf_diffraction_{}, id_mtf_pixel_{}, id_mtf_other_{}, id_q_{};
+};
+
+}  // namespace
+
+RADCHAIN_PLUGIN(Giqe, {
+    .summary = "NIIRS from GSD, RER (from an MTF budget) and SNR by the GIQE-5 (or GIQE-4); margin on a required NIIRS",
+    .reference = "NGA, General Image Quality Equation v5.0 (2015); Leachtenauer et al., Appl. Opt. 36 (1997) 8322",
+    .schema = schema,
+    .publishes = {vocabulary::criterion_niirs, vocabulary::criterion_rer, vocabulary::criterion_margin},
+    .needs = {vocabulary::platform_altitude, vocabulary::platform_tilt, if_present(vocabulary::platform_roll),
+              if_present(vocabulary::platform_pitch), if_present(vocabulary::platform_earth_radius),
+              vocabulary::optics_focal_length, vocabulary::optics_f_number, if_present(vocabulary::optics_obscuration),
+              if_present(vocabulary::detector_snr), if_present(vocabulary::detector_pixel_pitch)},
+})

@@ -1,0 +1,86 @@
+// A Lambertian ground of reflectance ρ lit by the Sun at solar zenith angle θ_s (issue 14): the radiance that
+// reaches the aperture is
+//   L_λ = τ↑_λ ρ E_λ cos θ_s τ↓_λ / π  (+ L_path,λ, which the atmosphere adds to the scene background)
+// (Schott, Remote Sensing: The Image Chain Approach, 2nd ed. (2007), §4.1 "the big equation", Lambertian
+// surface, no adjacency or sky-light term; Schowengerdt 2007 §2.4). E_λ is the source's irradiance at normal
+// incidence (τ↓ applied by the atmosphere's down path), so θ_s enters only through cos θ_s here. The signal is
+// the whole target radiance (as an SNR at L_ref counts it), the background a ground of `background_reflectance`.
+// The path radiance is reported in at_aperture_radiance; it is not yet added to the signal spectrum (no stage
+// downstream reads light.path_radiance today: docs/eo-imagers.md).
+// Kolobrodov's contrast target stays lambertian_ground.
+#include "radchain/plugin.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace {
+using namespace radchain;
+
+const Schema& schema() {
+  static const Schema s = {
+      number("reflectance", "0.3").needed().above(0).at_most(1).described("Lambertian reflectance ρ of the target"),
+      quantity("solar_zenith", "rad", "30 deg").fallback("0 deg").at_least(0).below(1.5707963267948966)
+          .described("solar zenith angle θ_s at the target (the Sun above the horizon)"),
+      number("background_reflectance", "0.1").above(0).at_most(1)
+          .described("reflectance of the surrounding ground (default: ρ, a uniform scene)"),
+  };
+  return s;
+}
+
+class ReflectanceGround final : public Stage {
+ public:
+  explicit ReflectanceGround(const Params& p)
+      : params_(p), rho_(p.handle("reflectance")), zenith_(p.handle("solar_zenith")),
+        background_rho_(p.handle("background_reflectance")) {}
+
+  void prepare(Context& c) override {
+    if (c.light.illumination.empty()) c.refuse_form("a source spectrum", RadiationForm::none);
+    Spectrum per_reflectance = c.light.illumination.scaled(1.0 / std::numbers::pi, "W m-2 sr-1 m-1");
+    if (!c.light.up_path_transmittance.empty())
+      per_reflectance = per_reflectance.product(c.light.up_path_transmittance, "W m-2 sr-1 m-1");
+    c.light.signal = Radiation{RadiationForm::scene_radiance, per_reflectance, 1.0};
+    c.light.background = Radiation{RadiationForm::scene_radiance, per_reflectance, 1.0};
+    id_cos_ = c.declare("cos_solar_zenith", "1", "cos θ_s");
+    if (c.light.has_report_band()) {
+      const double lo = c.light.report_band_min_m, hi = c.light.report_band_max_m;
+      per_reflectance_in_band_ = per_reflectance.integral(lo, hi);
+      path_in_band_ = c.light.path_radiance.empty() ? 0.0 : c.light.path_radiance.integral(lo, hi);
+      id_radiance_ = c.declare("at_aperture_radiance", "W m-2 sr-1",
+                               "in the reporting band: τ↑ ρ E cos θ_s τ↓ / π + L_path (Schott 2007 §4.1)", "W/(m2 sr)");
+      id_surface_ = c.declare("surface_radiance_at_aperture", "W m-2 sr-1", "τ↑ ρ E cos θ_s τ↓ / π, in band",
+                              "W/(m2 sr)");
+      id_path_ = c.declare("path_radiance", "W m-2 sr-1", "L_path in band (from the atmosphere)", "W/(m2 sr)");
+    }
+  }
+
+  void evaluate(Context& c) override {
+    const double mu = std::cos(*zenith_);
+    const double rho_b = params_.has("background_reflectance") ? *background_rho_ : *rho_;
+    const double common = c.light.illumination_scale * c.light.up_path_scale * mu;
+    c.light.signal.scale = common * *rho_;
+    c.light.background.scale = common * rho_b;
+    c.results.set(id_cos_, mu);
+    if (id_radiance_) {
+      const double surface = per_reflectance_in_band_ * common * *rho_;
+      const double path = path_in_band_;  // already at the sensor: the atmosphere states it so
+      c.results.set(*id_surface_, surface);
+      c.results.set(*id_path_, path);
+      c.results.set(*id_radiance_, surface + path);
+    }
+  }
+
+ private:
+  const Params& params_;
+  const double *rho_, *zenith_, *background_rho_;
+  double per_reflectance_in_band_ = 0, path_in_band_ = 0;
+  ResultId id_cos_{};
+  std::optional<ResultId> id_radiance_, id_surface_, id_path_;
+};
+
+}  // namespace
+
+RADCHAIN_PLUGIN(ReflectanceGround, {
+    .summary = "Lambertian ground of reflectance ρ under the Sun at zenith angle θ_s: at-aperture radiance",
+    .reference = "Schott, Remote Sensing: The Image Chain Approach 2nd ed. (2007) §4.1",
+    .schema = schema,
+})

@@ -1,0 +1,92 @@
+// Spherical-Earth viewing geometry (physics/earth_geometry.hpp) against independent closed forms: the law of
+// cosines and of sines in the triangle Earth centre – satellite – ground point, the flat-Earth limits, and the
+// pixel-pitch GSD of a real imager computed by hand.
+#include "radchain/physics/earth_geometry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace {
+
+using namespace radchain::physics;
+constexpr double pi = std::numbers::pi;
+constexpr double deg = pi / 180, km = 1e3, um = 1e-6;
+constexpr double R = 6371.0 * km;
+
+TEST(EarthGeometry, PixelPitchGsdIsAltitudeTimesIfov) {
+  // Sentinel-2 MSI 10 m bands: h = 786 km, p = 7.5 µm, f' = 600 mm → 786e3 · 7.5e-6 / 0.6 = 9.825 m (by hand).
+  EXPECT_NEAR(pixel_pitch_gsd_m(786 * km, 7.5 * um, 0.6), 9.825, 1e-12);
+}
+
+TEST(EarthGeometry, SlantRangeObeysTheLawOfCosines) {
+  const double h = 700 * km, s = R + h;
+  for (double theta_deg : {0.0, 5.0, 20.0, 45.0, 60.0}) {
+    const double theta = theta_deg * deg;
+    const double rho = slant_range_m(h, theta, R);
+    // R² = ρ² + s² − 2ρ s cos θ (independent of the quadratic's root formula)
+    EXPECT_NEAR(rho * rho + s * s - 2 * rho * s * std::cos(theta), R * R, 1e-9 * R * R) << theta_deg;
+    // law of sines: ρ = R sin λ / sin θ with λ = η − θ (θ > 0)
+    if (theta_deg > 0) {
+      const double lambda = earth_central_angle_rad(h, theta, R);
+      EXPECT_NEAR(rho, R * std::sin(lambda) / std::sin(theta), 1e-6) << theta_deg;
+    }
+  }
+  EXPECT_DOUBLE_EQ(slant_range_m(h, 0, R), h);
+}
+
+TEST(EarthGeometry, HorizonAndBeyond) {
+  const double h = 500 * km;
+  const double horizon = horizon_off_nadir_angle_rad(h, R);
+  EXPECT_NEAR(horizon, std::asin(R / (R + h)), 1e-15);
+  EXPECT_NEAR(horizon / deg, 68.0, 0.1);  // 500 km: horizon ~68° off nadir (SMAD Table 5-3 style estimate)
+  // At the horizon the slant range is the tangent length √(s² − R²).
+  EXPECT_NEAR(slant_range_m(h, horizon * (1 - 1e-12), R), std::sqrt((R + h) * (R + h) - R * R), 5.0);
+  EXPECT_THROW(slant_range_m(h, horizon + 0.01, R), LookPastHorizon);
+  EXPECT_THROW(gsd_across_track_m(h, 80 * deg, 0, 1e-5, R), LookPastHorizon);
+}
+
+TEST(EarthGeometry, GsdAtARollEqualsTheClosedFormInAndAcrossTheLookPlane) {
+  const double h = 617 * km, ifov = 0.31 / 617e3;  // a 31 cm GSD camera
+  for (double roll_deg : {0.0, 10.0, 30.0, 45.0}) {
+    const double roll = roll_deg * deg;
+    const double eta = view_zenith_angle_rad(h, roll, R);
+    const double rho = slant_range_m(h, roll, R);
+    EXPECT_NEAR(gsd_across_track_m(h, roll, 0, ifov, R), rho * ifov / std::cos(eta), 1e-6 * rho * ifov) << roll_deg;
+    EXPECT_NEAR(gsd_along_track_m(h, roll, 0, ifov, R), rho * ifov, 1e-6 * rho * ifov) << roll_deg;
+    // a pure pitch swaps the two
+    EXPECT_NEAR(gsd_along_track_m(h, 0, roll, ifov, R), rho * ifov / std::cos(eta), 1e-6 * rho * ifov) << roll_deg;
+    EXPECT_NEAR(gsd_across_track_m(h, 0, roll, ifov, R), rho * ifov, 1e-6 * rho * ifov) << roll_deg;
+    EXPECT_NEAR(gsd_in_look_plane_m(h, roll, ifov, R), rho * ifov / std::cos(eta), 1e-9);
+  }
+  // WorldView-3-like at 30° off nadir: in-plane GSD grows by ρ/(h cos η) = 1.42 over nadir on a sphere
+  // (flat Earth: 1/cos² 30° = 1.333) — the curvature term a flat-Earth design misses.
+  const double growth = gsd_across_track_m(h, 30 * deg, 0, ifov, R) / gsd_across_track_m(h, 0, 0, ifov, R);
+  EXPECT_GT(growth, 1.0 / std::pow(std::cos(30 * deg), 2));
+  EXPECT_NEAR(growth, slant_range_m(h, 30 * deg, R) / (h * std::cos(view_zenith_angle_rad(h, 30 * deg, R))), 1e-5);
+}
+
+TEST(EarthGeometry, FlatEarthLimit) {
+  const double big = 1e13, h = 500 * km, ifov = 1e-6, theta = 40 * deg;  // R → ∞
+  EXPECT_NEAR(gsd_in_look_plane_m(h, theta, ifov, big), h * ifov / std::pow(std::cos(theta), 2), 1e-6);
+  EXPECT_NEAR(gsd_across_look_plane_m(h, theta, ifov, big), h * ifov / std::cos(theta), 1e-6);
+}
+
+TEST(EarthGeometry, SwathIsTheArcBetweenTheEdgeLooks) {
+  // Nadir-centred: swath = 2 R λ(α), λ the Earth central angle of the edge look (closed form).
+  const double h = 786 * km, alpha = 10.3 * deg;
+  EXPECT_NEAR(swath_m(h, 0, 0, alpha, R), 2 * R * earth_central_angle_rad(h, alpha, R), 1e-3);
+  // longer than the flat-Earth 2 h tan α
+  EXPECT_GT(swath_m(h, 0, 0, alpha, R), 2 * h * std::tan(alpha));
+  EXPECT_NEAR(half_field_angle_rad(0.1, 0.5), std::atan(0.1), 1e-15);
+}
+
+TEST(EarthGeometry, OffNadirAngleAndLineTime) {
+  EXPECT_NEAR(off_nadir_angle_rad(30 * deg, 0), 30 * deg, 1e-15);
+  EXPECT_NEAR(std::cos(off_nadir_angle_rad(20 * deg, 15 * deg)), std::cos(20 * deg) * std::cos(15 * deg), 1e-15);
+  EXPECT_DOUBLE_EQ(line_time_s(10.0, 6.7e3), 10.0 / 6.7e3);
+  EXPECT_THROW(line_time_s(10.0, 0), std::invalid_argument);
+}
+
+}  // namespace
