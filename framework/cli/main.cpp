@@ -4,6 +4,7 @@
 // Exit codes: 0 ok, 1 a failed check ([expected], a solve, a compare tolerance), 2 bad input (one line on
 // stderr), 3 an internal error.
 #include "commands.hpp"
+#include "radchain/atomic_file.hpp"
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
 #include "radchain/version.hpp"
@@ -11,10 +12,36 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <csignal>
+#include <cstring>
 #include <iostream>
+
+#include <unistd.h>
 
 namespace {
 using namespace radchain;
+
+// SIGINT/SIGTERM: remove every output not yet complete (its temporary), say so, and die of the signal.
+extern "C" void stop_on_signal(int signal) {
+  AtomicFile::remove_pending();
+  const char* message = signal == SIGINT ? "radchain: interrupted (SIGINT); no output file was written\n"
+                                         : "radchain: terminated (SIGTERM); no output file was written\n";
+  [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, message, std::strlen(message));
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
+void stop_cleanly_on_signals() {
+  struct sigaction action {};
+  action.sa_handler = stop_on_signal;
+  sigemptyset(&action.sa_mask);
+  for (int signal : {SIGINT, SIGTERM}) sigaction(signal, &action, nullptr);
+}
+
+int dispatch_checked(int code) {
+  check_standard_output();  // `radchain run ... >/dev/full` is an error, not exit 0
+  return code;
+}
 
 void add_render_options(CLI::App* cmd, cli::RenderCommand& render) {
   cli::add_sensor(cmd, render.sensor);
@@ -99,6 +126,7 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--plot", sweep.plot, "draw a 1-D sweep to this PNG with gnuplot");
   cli::add_output(sweep_cmd, sweep.output, "csv (default), text or json");
   cli::add_batch(sweep_cmd, sweep.batch);
+  sweep_cmd->add_flag("--allow-large", sweep.allow_large, "run a grid of more than 10^8 points (refused otherwise)");
 
   cli::MtfCommand mtf;
   auto* mtf_cmd = app.add_subcommand("mtf", "MTF curves of a pushbroom design (objective, detector, system) as CSV and a plot");
@@ -121,8 +149,10 @@ int main(int argc, char** argv) {
 
   auto* plugins_cmd = app.add_subcommand("plugins", "list the plugins found on the search path");
   std::string describe_name;
-  auto* describe_cmd = app.add_subcommand("describe", "show a plugin's keys, units, defaults, ranges and a TOML example");
-  describe_cmd->add_option("plugin", describe_name, "plugin name (or path to a plugin .so)")->required();
+  auto* describe_cmd = app.add_subcommand(
+      "describe", "a plugin's keys, units, defaults, ranges, results and a TOML example; a kind's plugins; a sensor-file table");
+  describe_cmd->add_option("what", describe_name, "plugin name, path to a plugin .so, kind (criterion, ...), or sensor, solve, expected")
+      ->required();
 
   try {
     app.parse(argc, argv);
@@ -133,24 +163,32 @@ int main(int argc, char** argv) {
     return static_cast<int>(ExitCode::bad_input);
   }
 
+  stop_cleanly_on_signals();
   try {
     PluginHost::instance().configure(plugin_path);
-    if (*run_cmd) return cli::run(run);
-    if (*cat_cmd) return cli::catalogue(catalogue);
-    if (*cmp_cmd) return cli::compare(compare);
-    if (*sweep_cmd) return cli::sweep(sweep);
-    if (*merge_cmd) return cli::merge(merge);
-    if (*mtf_cmd) return cli::mtf(mtf);
-    if (*render_cmd) return cli::render(render);
-    if (*validate_cmd) return cli::validate(validate);
-    if (*plugins_cmd) return cli::plugins();
-    if (*describe_cmd) return cli::describe(describe_name);
+    if (*run_cmd) return dispatch_checked(cli::run(run));
+    if (*cat_cmd) return dispatch_checked(cli::catalogue(catalogue));
+    if (*cmp_cmd) return dispatch_checked(cli::compare(compare));
+    if (*sweep_cmd) return dispatch_checked(cli::sweep(sweep));
+    if (*merge_cmd) return dispatch_checked(cli::merge(merge));
+    if (*mtf_cmd) return dispatch_checked(cli::mtf(mtf));
+    if (*render_cmd) return dispatch_checked(cli::render(render));
+    if (*validate_cmd) return dispatch_checked(cli::validate(validate));
+    if (*plugins_cmd) return dispatch_checked(cli::plugins());
+    if (*describe_cmd) return dispatch_checked(cli::describe(describe_name));
   } catch (const InputError& error) {
     std::cerr << error.what() << "\n";
     return static_cast<int>(ExitCode::bad_input);
+  } catch (const WriteError& error) {
+    std::cerr << "radchain: " << error.what() << "\n";
+    return 3;
   } catch (const std::exception& error) {
     std::cerr << "radchain: internal error: " << error.what() << "\n";
     return 3;
+  } catch (...) {
+    // A plugin may throw anything; that must not abort the process (issue 18).
+    std::cerr << "radchain: internal error: an exception that is not a std::exception (thrown by a plugin?)\n";
+    return 3;
   }
-  return 0;
+  return dispatch_checked(0);
 }

@@ -5,6 +5,7 @@
 
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
+#include "radchain/sensor_file.hpp"
 #include "radchain/schema.hpp"
 
 #include <fmt/format.h>
@@ -44,12 +45,8 @@ void print_contract(const PluginInfo& info) {
   print_terms("needs:", needs);
 }
 
-void print_description(const PluginInfo& info, const std::string& path) {
-  fmt::print("{} — {} plugin (framework {}, ABI {})\n", info.name, to_string(info.kind), info.framework_version, info.abi_version);
-  fmt::print("  {}\n", info.summary);
-  fmt::print("  physics: {}\n", info.reference);
-  fmt::print("  file: {}\n\nkeys:\n", path);
-  const Schema& schema = info.schema();
+// The keys of a schema: name, type (with unit), required / default, doc, accepted range.
+void print_keys(const Schema& schema) {
   std::size_t width = 6;
   for (const auto& p : schema) width = std::max(width, p.key.size());
   for (const auto& p : schema) {
@@ -63,11 +60,22 @@ void print_description(const PluginInfo& info, const std::string& path) {
       case ParamType::flag: kind = "boolean"; break;
       case ParamType::spectrum: kind = "spectrum CSV [" + p.si_unit + "]"; break;
     }
+    if (p.shape == ParamShape::list) kind += ", or a list";
+    if (p.shape == ParamShape::pair) kind = "[low, high] " + kind;
     const std::string status = p.required ? "required" : p.default_value ? "default " + *p.default_value : "optional";
     fmt::print("  {:<{}}  {:<24} {:<22} {}\n", p.key, width, kind, status, p.doc);
     const std::string range = p.range_text();
     if (!range.empty()) fmt::print("  {:<{}}  {:<24} accepted: {}\n", "", width, "", range);
   }
+}
+
+void print_description(const PluginInfo& info, const std::string& path) {
+  fmt::print("{} — {} plugin (framework {}, ABI {})\n", info.name, to_string(info.kind), info.framework_version, info.abi_version);
+  fmt::print("  {}\n", info.summary);
+  fmt::print("  physics: {}\n", info.reference);
+  fmt::print("  file: {}\n\nkeys:\n", path);
+  const Schema& schema = info.schema();
+  print_keys(schema);
   print_contract(info);
   fmt::print("\nexample:\n[{}]\nplugin = \"{}\"\n", kind_section_example(info.kind), info.name);
   for (const auto& p : schema) {
@@ -79,6 +87,27 @@ void print_description(const PluginInfo& info, const std::string& path) {
     const std::string line = fmt::format("{}{} = {}", p.required || p.default_value ? "" : "# ", p.key, value);
     fmt::print("{:<40} # {}{}\n", line, p.required ? "required: " : p.default_value ? "" : "optional: ", p.doc);
   }
+}
+
+// The sensor file's own tables: `radchain describe sensor | solve | expected` (radchain/sensor_file.hpp).
+bool print_file_table(const std::string& name) {
+  if (name == "sensor") {
+    fmt::print("[sensor] — the instrument's identity (every key optional)\n\nkeys:\n");
+    print_keys(sensor_table_schema());
+  } else if (name == "solve") {
+    fmt::print("[[solve]] — a parameter the chain solves for, one entry per unknown\n\nkeys:\n");
+    print_keys(solve_entry_schema());
+    fmt::print("\nexample:\n[[solve]]\nunknown = \"optics.aperture\"\ncriterion = [\"energy\", \"matching\"]\n"
+               "bracket = [\"1 cm\", \"2 m\"]          # in the unknown's unit\n");
+  } else if (name == "expected") {
+    fmt::print("[expected] — a published value of a result, checked by run and catalogue (one entry per result)\n\nkeys:\n");
+    print_keys(expected_entry_schema());
+    fmt::print("\nexample:\n[expected]\n\"optics.focal_length\" = {{ value = \"832 mm\", tolerance = \"1 mm\", "
+               "source = \"Kolobrodov 1996, p. 4\" }}   # value, follows, tolerance in the result's unit\n");
+  } else {
+    return false;
+  }
+  return true;
 }
 
 void print_kind(Kind kind) {
@@ -105,6 +134,7 @@ std::optional<Kind> kind_named(const std::string& name) {
 }  // namespace
 
 int describe(const std::string& name) {
+  if (print_file_table(name)) return 0;
   if (auto kind = kind_named(name)) {
     print_kind(*kind);
     return 0;
@@ -122,12 +152,15 @@ int describe(const std::string& name) {
   for (const auto& f : PluginHost::instance().discover()) names.push_back(f.name);
   std::vector<std::string> kind_names;
   for (const KindInfo& k : kinds) kind_names.emplace_back(k.name);
+  const std::vector<std::string> tables = {"sensor", "solve", "expected"};
   std::vector<std::string> candidates = names;
   candidates.insert(candidates.end(), kind_names.begin(), kind_names.end());
+  candidates.insert(candidates.end(), tables.begin(), tables.end());
   const std::string near = nearest_match(name, candidates);
   throw InputError({}, "describe", name,
-                   fmt::format("unknown plugin or kind{}; plugins: {}; kinds: {}",
-                               near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(names), join(kind_names)));
+                   fmt::format("unknown plugin, kind or table{}; plugins: {}; kinds: {}; tables: {}",
+                               near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(names), join(kind_names),
+                               join(tables)));
 }
 
 }  // namespace radchain::cli

@@ -3,6 +3,7 @@
 #include "radchain/chain.hpp"
 
 #include "radchain/error.hpp"
+#include "radchain/vocabulary.hpp"
 
 #include <boost/math/tools/roots.hpp>
 
@@ -37,7 +38,7 @@ void Chain::resolve_solves(const std::vector<ResultId>& echo_ids) {
   resolved_.clear();
   for (std::size_t i = 0; i < solves.size(); ++i) {
     ResolvedSolve r{parameter(solves[i].unknown), {}, i < echo_ids.size() ? echo_ids[i] : SIZE_MAX};
-    for (const auto& name : solves[i].criteria) r.margins.push_back(*results_.find("criteria." + name + ".margin"));
+    for (const auto& name : solves[i].criteria) r.margins.push_back(*results_.find(vocabulary::criterion_margin.in_criterion(name)));
     resolved_.push_back(std::move(r));
   }
 }
@@ -243,8 +244,16 @@ void Chain::solve_all(std::vector<SolveOutcome>& outcomes) {
     evaluate();  // every solve ends with a full evaluation at the parameters it leaves; without solves, this one
     return;
   }
+  // A failed solve has no value: the result echoing its unknown says NaN, not the bracket end the solver tried
+  // last (issue 18: "results that lie"). Set after every evaluation, since each one rewrites the echoes.
+  auto failed_are_nan = [&] {
+    for (std::size_t i = 0; i < solves.size(); ++i)
+      if (!outcomes[i].converged && resolved_[i].echo != SIZE_MAX)
+        results_.set(resolved_[i].echo, std::numeric_limits<double>::quiet_NaN());
+  };
   if (solves.size() == 1) {
     solve(0, outcomes[0]);
+    failed_are_nan();
     return;
   }
   // Several solves form a design: repeat them in order until no unknown moves (they are usually decoupled,
@@ -260,6 +269,7 @@ void Chain::solve_all(std::vector<SolveOutcome>& outcomes) {
     }
     if (!moved) break;
   }
+  failed_are_nan();
 }
 
 }  // namespace radchain
