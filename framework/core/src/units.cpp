@@ -36,6 +36,7 @@ struct Registry {
     alias("AU", "astronomical_unit");
     alias("lp", "1");  // line pairs (cycles) per length are counted as plain reciprocal lengths
     alias("cy", "1");
+    alias("DN", "1");  // digital numbers (ADC counts): a system gain K is given in DN/e- (EMVA 1288)
   }
   void alias(const char* symbol, const char* target) {
     ut_unit* unit = ut_parse(system, target, UT_ASCII);

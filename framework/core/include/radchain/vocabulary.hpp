@@ -94,6 +94,25 @@ inline constexpr Term detector_nu_half_contrast{"detector.nu_half_contrast", "m-
 inline constexpr Term detector_system_element{"detector.system_element", "m", "system resolution element V_s in the focal plane"};
 inline constexpr Term detector_line_length{"detector.line_length", "m", "length of the detector line l_D"};
 
+// Datasheet detectors and telescopes (issue 13)
+inline constexpr Term detector_peak_pixel_fill{"detector.peak_pixel_fill", "1",
+                                               "brightest pixel's charge / saturation capacity (> 1: saturated)"};
+inline constexpr Term detector_saturation_capacity{"detector.saturation_capacity", "electron",
+                                                   "saturation capacity of one pixel μ_e.sat (EMVA 1288)"};
+inline constexpr Term detector_peak_pixel_electrons{"detector.peak_pixel_electrons", "electron",
+                                                    "charge in the brightest pixel (target + sky + dark) per exposure"};
+inline constexpr Term detector_noise_equivalent_area{"detector.noise_equivalent_area", "1",
+                                                     "PSF-weighted photometry's noise-equivalent area n_eff in pixels"};
+inline constexpr Term detector_system_gain{"detector.system_gain", "electron-1", "system gain K in DN per electron"};
+inline constexpr Term detector_tdi_stages{"detector.tdi_stages", "1", "TDI stages N summed in the charge domain"};
+inline constexpr Term target_zero_point_photon_rate{"target.zero_point_photon_rate", "m-2 s-1",
+                                                    "photons per second and m² of magnitude 0 in the target's band"};
+inline constexpr Term target_band_magnitude{"target.band_magnitude", "1", "target magnitude in its band and system"};
+inline constexpr Term atmosphere_airmass{"atmosphere.airmass", "1", "airmass X of the line of sight"};
+inline constexpr Term atmosphere_seeing_fwhm{"atmosphere.seeing_fwhm", "rad", "seeing FWHM at the line of sight's airmass"};
+inline constexpr Term atmosphere_sky_brightness{"atmosphere.sky_brightness", "1",
+                                                "sky surface brightness in AB mag/arcsec² as measured at the site"};
+
 // every criterion ("criteria.<name>.…")
 inline constexpr Term criterion_margin{"criteria.*.margin", "1",
                                        "achieved/required − 1: ≥ 0 passes; the root a [[solve]] finds"};
@@ -138,6 +157,10 @@ inline constexpr std::array all{
     platform_roll, platform_pitch, platform_slant_range, platform_view_zenith_angle, platform_earth_radius,
     detector_pixel_pitch, criterion_gsd_nadir, criterion_gsd_across_track, criterion_gsd_along_track,
     criterion_niirs, criterion_rer,
+    // Datasheet detectors and telescopes (issue 13)
+    detector_peak_pixel_fill, detector_saturation_capacity, detector_peak_pixel_electrons,
+    detector_noise_equivalent_area, detector_system_gain, detector_tdi_stages, target_zero_point_photon_rate,
+    target_band_magnitude, atmosphere_airmass, atmosphere_seeing_fwhm, atmosphere_sky_brightness,
 };
 
 // The term a qualified result name is, if any.

@@ -1,0 +1,72 @@
+#pragma once
+// A camera described by its EMVA 1288 datasheet: the linear camera model and its noise terms, and the
+// photometry of a point image on a pixel grid (noise-equivalent area of PSF-weighted photometry).
+//   EMVA Standard 1288, Release 4.0 Linear (2021), §2 "Sensitivity, linearity and noise":
+//     μ_e = η μ_p                                   (eq. 1: mean photoelectrons from mean photons)
+//     μ_y = μ_y.dark + K μ_e                          (eq. 3: mean digital value, K the system gain in DN/e-)
+//     σ_y² = K² (σ_d² + σ_e²) + σ_q²,  σ_e² = μ_e       (eq. 5: temporal variance; shot noise is Poisson)
+//     σ_q² = 1/12 DN²                                 (eq. 5, the uniform quantiser)
+//     SNR = μ_e / √(σ_d² + σ_q²/K² + μ_e)               (eq. 6)
+//     σ_d² = σ_d0² + μ_I t_exp                        (§4.2 / eq. 29: dark shot noise of the dark current μ_I)
+//     spatial non-uniformity: DSNU (σ_o in e-) and PRNU (s_g relative) add σ_o² + s_g² μ_e² per pixel
+//                                                     (§2.4, the "SNR including spatial non-uniformities", eq. 18)
+//     saturation capacity μ_e.sat: the largest charge still read linearly (§2.3)
+//   Noise-equivalent area of PSF-weighted (optimal) photometry: for a PSF sampled into pixel fractions f_i
+//   (Σ f_i = 1), the background-limited variance of the optimal estimator is B / Σ f_i² per pixel background B,
+//   so n_eff = 1 / Σ f_i²  (King 1983, PASP 95, 163; LSST SMTN-002 §"Noise-equivalent number of pixels";
+//   Ivezić et al. 2019, ApJ 873, 111, eq. 6 footnote). A Gaussian of FWHM θ in pixels gives n_eff → 2.266 θ²
+//   (= 4π σ²) when θ ≫ 1 pixel; SMTN-002 uses n_eff = 2.266 (FWHM_eff / pixel scale)².
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+namespace radchain::physics {
+
+// EMVA 1288 eq. (5): quantisation variance in electrons², σ_q²/K² with σ_q² = 1/12 DN².
+inline double emva_quantisation_variance_e2(double gain_dn_per_e) { return 1.0 / (12.0 * gain_dn_per_e * gain_dn_per_e); }
+
+// EMVA 1288 eq. (6) with the spatial terms of §2.4 (eq. 18): SNR of one pixel's signal μ_e.
+inline double emva_pixel_snr(double signal_e, double dark_noise_e, double dark_current_e_s, double exposure_s,
+                             double gain_dn_per_e, double dsnu_e = 0.0, double prnu = 0.0) {
+  const double var = signal_e + dark_noise_e * dark_noise_e + dark_current_e_s * exposure_s +
+                     emva_quantisation_variance_e2(gain_dn_per_e) + dsnu_e * dsnu_e + prnu * prnu * signal_e * signal_e;
+  return signal_e / std::sqrt(var);
+}
+
+// Fraction of a centred Gaussian PSF (standard deviation σ, pixels) in the pixel column i ∈ ℤ (the PSF centred
+// on pixel 0's centre, `offset` pixels off it): Φ((i + ½ − offset)/σ) − Φ((i − ½ − offset)/σ).
+inline double gaussian_pixel_fraction(int i, double sigma_px, double offset_px = 0.0) {
+  const double s = sigma_px * std::numbers::sqrt2;
+  return 0.5 * (std::erf((i + 0.5 - offset_px) / s) - std::erf((i - 0.5 - offset_px) / s));
+}
+
+// n_eff = 1 / Σ f_ij² for a Gaussian PSF of FWHM (pixels) sampled by square pixels, centred on a pixel
+// (separable: Σ f_ij² = (Σ_i g_i²)²). Tends to 4π σ² = 2.266 FWHM² for FWHM ≫ 1 and to 1 for FWHM → 0.
+inline double gaussian_noise_equivalent_area_px(double fwhm_px) {
+  const double sigma = fwhm_px / (2.0 * std::sqrt(2.0 * std::numbers::ln2));
+  const int half = static_cast<int>(std::ceil(8.0 * sigma)) + 1;
+  double sum = 0.0;
+  for (int i = -half; i <= half; ++i) {
+    const double g = gaussian_pixel_fraction(i, sigma);
+    sum += g * g;
+  }
+  return 1.0 / (sum * sum);
+}
+
+// The fraction of a Gaussian PSF in its brightest pixel (centred on the pixel): erf(1/(2√2 σ))².
+inline double gaussian_peak_pixel_fraction(double fwhm_px) {
+  const double sigma = fwhm_px / (2.0 * std::sqrt(2.0 * std::numbers::ln2));
+  const double g = gaussian_pixel_fraction(0, sigma);
+  return g * g;
+}
+
+// FWHM of the diffraction core of an annular pupil approximated as a Gaussian: 1.028 λ/D for a clear pupil
+// (Airy FWHM, Born & Wolf §8.5.2), the same for ε ≤ 0.5 to within 5 % (the core narrows slightly,
+// Mahajan 2001). Added in quadrature to the seeing FWHM (Ivezić et al. 2019 §3.2: FWHM_eff² = θ_atm² + θ_sys²).
+inline double diffraction_fwhm_rad(double wavelength_m, double aperture_m) { return 1.028 * wavelength_m / aperture_m; }
+
+// Seeing at airmass X from seeing at the zenith: θ(X) = θ_0 X^0.6 (Kolmogorov turbulence, r0 ∝ X^-3/5;
+// Roddier 1981, Prog. Optics 19, 281; Ivezić et al. 2019 §3.2).
+inline double seeing_at_airmass(double zenith_fwhm, double airmass) { return zenith_fwhm * std::pow(airmass, 0.6); }
+
+}  // namespace radchain::physics

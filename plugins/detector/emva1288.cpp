@@ -1,0 +1,293 @@
+// A CMOS or CCD camera described by its EMVA 1288 datasheet (Release 4.0 Linear, 2021), counting a point image
+// in an n×n window (ensquared energy) or by PSF-weighted photometry (noise-equivalent area n_eff), over
+// `exposures` co-added frames, optionally with `tdi_stages` of charge-domain TDI and b×b digital binning.
+//   image     S_img = N_tdi t ∫ P_λ η(λ) λ/(hc) dλ        (EMVA 1288 eq. 1, μ_e = η μ_p; Pan 2010 eqs. 6-8)
+//   signal    window: S₁ = EE · S_img;  psf: S₁ = S_img (the optimal estimator recovers the whole image)
+//   per (binned) pixel, one exposure (b² native pixels summed digitally; TDI: signal and dark × N_tdi, read once):
+//     temporal  v_t = b² [N_tdi (B + μ_I t) + σ_d0² + σ_q²/K² + σ_other²],  σ_q² = 1/12 DN²   (EMVA eqs. 5, 29)
+//     spatial   v_s = b² σ_DSNU²                                                               (EMVA §2.4, eq. 18)
+//   noise over M co-added exposures: n² = M (S₁ + n_pix v_t) + M² (n_pix v_s + s_g² S₁²/n_eff)
+//     temporal noise adds in variance over M frames; the fixed patterns (DSNU, PRNU s_g) repeat in every frame
+//     of the same pixels and add in amplitude (EMVA 1288 §2.4: spatial non-uniformity does not average out).
+//     PRNU on the point image: Σ_i (s_g S f_i)² = s_g² S² Σ f_i² = s_g² S²/n_eff (n_eff = 1/Σ f_i²).
+//   n_pix = n² (window) or n_eff (psf: King 1983; LSST SMTN-002; physics/emva1288.hpp)
+//   SNR = M S₁ / n                                           (EMVA eq. 6 summed over the photometric aperture)
+// The PSF: optics' Airy (psf = "airy") or Gaussian (psf = "gaussian"), or atmospheric seeing (an atmosphere that
+// publishes atmosphere.seeing_fwhm) added in quadrature to the diffraction core as a Gaussian (Ivezić et al. 2019
+// §3.2). Without a PSF all of the image falls in one pixel (Pan 2010's assumption): the brightest pixel gets it all.
+// Sky: an atmosphere publishing atmosphere.sky_brightness (AB mag/arcsec², as measured at the site) is counted
+// by étendue: B = t · A τ Ω_pix · 10^{-0.4 m_sky} ∫ (3631 Jy)/(hλ) η(λ) dλ, the AB zero point through this
+// detector's band and QE (Oke & Gunn 1983; the sky's spectrum taken as flat in f_ν over the band).
+// SATURATION (EMVA §2.3, saturation capacity μ_e.sat): the brightest native pixel's charge in one exposure,
+// f_peak S_img,1 + N_tdi (B_native + μ_I t) (f_peak: the PSF's fraction in the pixel it is centred on), over
+// min(μ_e.sat, (2^bits − 1)/K), is detector.peak_pixel_fill; the criterion "unsaturated" fails when it exceeds 1.
+#include "radchain/physics/emva1288.hpp"
+#include "radchain/physics/photometry.hpp"
+#include "radchain/physics/psf.hpp"
+#include "radchain/plugin.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdint>
+#include <numbers>
+
+namespace {
+using namespace radchain;
+
+constexpr double arcsec_per_rad = 180.0 * 3600.0 / std::numbers::pi;
+constexpr double ab_zero_f_nu = 3631e-26;  // W m-2 Hz-1 (Oke & Gunn 1983: m_AB = -2.5 lg f_ν - 48.60, cgs)
+
+const Schema& schema() {
+  static const Schema s = {
+      number("qe", "0.6").fallback("1").above(0).at_most(1)
+          .described("quantum efficiency η (EMVA 1288 §2.1; multiplies any qe_curve)"),
+      spectrum_file("qe_curve", "1", "cmos_sony_imx428_mono_qe.csv").described("spectral quantum efficiency η(λ)"),
+      quantity("band_min", "m", "0.4 um").needed().above(0).affects_spectrum().described("detector band lower limit"),
+      quantity("band_max", "m", "0.9 um").needed().above(0).affects_spectrum().described("detector band upper limit"),
+      quantity("integration_time", "s", "10 ms").needed().above(0)
+          .described("exposure time t of one frame (of one TDI stage for tdi_stages > 1)"),
+      quantity("gain", "electron-1", "0.25 DN/e-").needed().above(0).described("system gain K in DN/e- (EMVA eq. 3)"),
+      quantity("dark_noise", "electron", "2.3 e-").needed().at_least(0)
+          .described("temporal dark noise σ_d0 (EMVA §4.2: at zero exposure time, read noise included)"),
+      quantity("saturation_capacity", "electron", "10500 e-").needed().above(0)
+          .described("saturation capacity μ_e.sat (EMVA §2.3)"),
+      quantity("dark_current", "electron/s", "1 e-/s").fallback("0 e-/s").at_least(0)
+          .described("dark current μ_I (EMVA §4.2)"),
+      number("prnu", "0.005").fallback("0").at_least(0).below(1)
+          .described("photo-response non-uniformity s_g as a fraction (EMVA §2.4: PRNU1288 / 100 %)"),
+      quantity("dsnu", "electron", "1 e-").fallback("0 e-").at_least(0)
+          .described("dark signal non-uniformity σ_o in electrons (EMVA §2.4: DSNU1288)"),
+      quantity("other_noise", "electron", "1 e-").fallback("0 e-").at_least(0)
+          .described("any further temporal noise per pixel and frame, rms"),
+      integer("adc_bits", "12").needed().at_least(1).at_most(32).described("ADC resolution (bits)"),
+      integer("binning", "2").fallback("1").at_least(1).at_most(16)
+          .described("b×b digital binning: b² native pixels summed, each with its own read noise"),
+      integer("exposures", "4").fallback("1").at_least(1).at_most(1000000).described("frames co-added M"),
+      integer("tdi_stages", "64").fallback("1").at_least(1).at_most(10000)
+          .described("charge-domain TDI stages N: signal and dark × N, read noise once"),
+      quantity("pixel_pitch", "m", "4.5 um").needed().above(0).described("native pixel pitch"),
+      choice("photometry", {"window", "psf"}).fallback("window")
+          .described("window: n×n pixels with the PSF's ensquared energy; psf: PSF-weighted, n_eff pixels"),
+      integer("window_pixels", "3").fallback("1").at_least(1).at_most(1000)
+          .described("side n of the n×n window in (binned) pixels (photometry = \"window\")"),
+      number("ensquared_energy", "0.8").above(0).at_most(1)
+          .described("fraction of the point image in the window (default: from the PSF, else 1)"),
+  };
+  return s;
+}
+
+std::string nm_range(const Spectrum& s) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.1f-%.1f nm", s.min_wavelength_m() * 1e9, s.max_wavelength_m() * 1e9);
+  return text;
+}
+
+class Emva1288 final : public Stage {
+ public:
+  explicit Emva1288(const Params& p)
+      : params_(p), qe_(p.handle("qe")), time_(p.handle("integration_time")), gain_(p.handle("gain")),
+        dark_noise_(p.handle("dark_noise")), saturation_(p.handle("saturation_capacity")),
+        dark_current_(p.handle("dark_current")), prnu_(p.handle("prnu")), dsnu_(p.handle("dsnu")),
+        other_(p.handle("other_noise")), bits_(p.handle("adc_bits")), binning_(p.handle("binning")),
+        exposures_(p.handle("exposures")), tdi_(p.handle("tdi_stages")), pitch_(p.handle("pixel_pitch")),
+        window_(p.handle("window_pixels")), ensquared_(p.handle("ensquared_energy")),
+        psf_photometry_(p.text("photometry") == "psf") {
+    if (!(p.get("band_max") > p.get("band_min"))) p.reject("band_max", "must be larger than band_min");
+    if (psf_photometry_ && p.given("window_pixels"))
+      p.reject("window_pixels", "is used only with photometry = \"window\" (PSF-weighted photometry uses n_eff pixels)");
+    if (psf_photometry_ && p.given("ensquared_energy"))
+      p.reject("ensquared_energy", "is used only with photometry = \"window\"");
+  }
+
+  void prepare(Context& c) override {
+    const Radiation& signal = c.light.signal;
+    if (signal.form != RadiationForm::focal_power) c.refuse_form("a point image's power (a point target)", signal.form);
+    const double lo = params_.get("band_min"), hi = params_.get("band_max");
+    const Spectrum* qe_curve = params_.has("qe_curve") ? &params_.spectrum("qe_curve") : nullptr;
+    if (qe_curve && (lo < qe_curve->min_wavelength_m() || hi > qe_curve->max_wavelength_m()))
+      params_.reject(lo < qe_curve->min_wavelength_m() ? "band_min" : "band_max",
+                     "the band reaches outside the qe_curve's table (" + nm_range(*qe_curve) + "): it would count 0 there");
+    // EMVA eq. 1 in spectral form: photoelectrons per second per unit signal scale.
+    photon_rate_per_scale_ = physics::photon_rate(signal.spectrum, lo, hi, qe_curve);
+    // AB magnitude 0 (flat f_ν = 3631 Jy) through this detector: n_λ = f_ν/(hλ), electrons s-1 m-2 (times qe).
+    const Spectrum ab = Spectrum::sampled(
+        Eigen::ArrayXd::LinSpaced(2001, lo, hi),
+        [](double l) { return ab_zero_f_nu * constants::speed_of_light_m_s / (l * l); }, "W m-2 m-1");
+    ab_electrons_per_m2_s_ = physics::photon_rate(ab, lo, hi, qe_curve);
+
+    psf_wavelength_ = c.find(vocabulary::optics_psf_wavelength);
+    gaussian_fwhm_ = c.find(vocabulary::optics_gaussian_fwhm);
+    f_number_ = c.find(vocabulary::optics_f_number);
+    obscuration_ = c.find(vocabulary::optics_obscuration);
+    focal_length_ = c.find(vocabulary::optics_focal_length);
+    aperture_ = c.find(vocabulary::optics_aperture);
+    area_ = c.find(vocabulary::optics_collecting_area);
+    transmittance_ = c.find(vocabulary::optics_transmittance);
+    seeing_ = c.find(vocabulary::atmosphere_seeing_fwhm);
+    band_magnitude_ = c.find(vocabulary::target_band_magnitude);
+    if (band_magnitude_)
+      id_zero_point_ = c.declare("instrumental_zero_point", "1",
+                                 "m + 2.5 lg(S_img/(M N_tdi t)): the target-system magnitude giving 1 e-/s (SMTN-002)");
+    sky_ = c.find(vocabulary::atmosphere_sky_brightness);
+    if ((seeing_ || sky_) && !focal_length_)
+      params_.reject("pixel_pitch", "the atmosphere gives seeing or sky brightness in angle: the optics need a "
+                                    "focal_length to map it onto pixels");
+    if (sky_ && (!area_ || !transmittance_))
+      params_.reject("pixel_pitch", "a sky brightness needs a telescope (collecting area and transmittance)");
+    if (psf_photometry_ && !seeing_ && !gaussian_fwhm_ && !(psf_wavelength_ && f_number_))
+      params_.reject("photometry", "photometry = \"psf\" needs a PSF: seeing from the atmosphere or psf = \"airy\"/"
+                                   "\"gaussian\" in the optics");
+
+    id_image_ = c.declare(vocabulary::detector_image_electrons, "S_img = M N_tdi t ∫ P_λ η λ/(hc) dλ (EMVA 1288 eq. 1)", "e-");
+    id_signal_ = c.declare(vocabulary::detector_signal_electrons,
+                           psf_photometry_ ? "S = S_img (PSF-weighted photometry)" : "S = EE × S_img in the n×n window", "e-");
+    id_noise_ = c.declare(vocabulary::detector_noise_electrons,
+                          "√(M (S₁ + n_pix v_t) + M² (n_pix v_s + s_g² S₁²/n_eff)) (EMVA 1288 eqs. 5, 6, 18)", "e-");
+    id_snr_ = c.declare(vocabulary::detector_snr, "M S₁ / noise (EMVA 1288 eq. 6 over the photometric aperture)");
+    id_time_ = c.declare(vocabulary::detector_integration_time, "input t", "s");
+    id_pixels_ = c.declare(vocabulary::detector_window_pixel_count,
+                           psf_photometry_ ? "n_eff (PSF-weighted photometry)" : "n² pixels of the window");
+    id_ensquared_ = c.declare(vocabulary::detector_ensquared_energy,
+                              psf_photometry_ ? "1 (PSF-weighted)" : "EE of the PSF over the window (or input)");
+    id_neff_ = c.declare(vocabulary::detector_noise_equivalent_area,
+                         "n_eff = 1/Σ f_i² of the PSF on the (binned) pixel grid (King 1983; SMTN-002)");
+    id_fill_ = c.declare(vocabulary::detector_peak_pixel_fill, "brightest native pixel / min(μ_e.sat, (2^bits−1)/K)", "%");
+    id_peak_ = c.declare(vocabulary::detector_peak_pixel_electrons, "f_peak S_img,1 + N_tdi (B_native + μ_I t)", "e-");
+    id_saturation_ = c.declare(vocabulary::detector_saturation_capacity, "min(μ_e.sat, (2^bits − 1)/K)", "e-");
+    id_gain_ = c.declare(vocabulary::detector_system_gain, "input K", "DN/e-");
+    id_tdi_ = c.declare(vocabulary::detector_tdi_stages, "input N_tdi");
+    id_sky_ = c.declare(vocabulary::detector_sky_electrons_per_pixel,
+                        "B = N_tdi b² t A τ Ω_pix 10^{-0.4 m_sky} ∫ f_ν,AB η/(hλ) dλ per binned pixel and frame", "e-");
+    id_peak_fraction_ = c.declare("peak_pixel_fraction", "1", "fraction of the point image in the brightest native pixel");
+    id_psf_fwhm_ = c.declare("psf_fwhm", "m", "Gaussian PSF FWHM on the focal plane (seeing ⊕ diffraction)", "um");
+    id_quant_ = c.declare("quantisation_noise", "electron", "σ_q/K = 1/(√12 K) per pixel (EMVA eq. 5)", "e-");
+    id_dark_ = c.declare("dark_electrons", "electron", "n_pix b² N_tdi μ_I t per frame", "e-");
+    id_read_noise_ = c.declare("read_noise", "electron", "√(n_pix b² σ_d0²) per frame", "e-");
+    id_background_ = c.declare("background_electrons", "electron", "n_pix × B per frame", "e-");
+    id_shot_noise_ = c.declare("shot_noise", "electron", "√S over M frames", "e-");
+    id_prnu_noise_ = c.declare("prnu_noise", "electron", "M s_g S₁/√n_eff", "e-");
+    id_ab_zero_ = c.declare("ab_zero_point_electron_rate", "m-2 s-1",
+                            "electrons s-1 m-2 of AB magnitude 0 through the band and QE (before optics)", "cm-2 s-1");
+  }
+
+  void evaluate(Context& c) override {
+    ScalarAccess a(c);
+    auto opt = [&](const std::optional<ResultId>& id) { return id ? a.value(*id) : 0.0; };
+    const double t = *time_, qe = *qe_, gain = *gain_, pitch = *pitch_;
+    const double b = *binning_, m = *exposures_, tdi = *tdi_;
+    const double binned = b * pitch;
+    // The PSF as a Gaussian FWHM on the focal plane when seeing or a Gaussian optics PSF is given.
+    double fwhm = 0.0;
+    const bool airy = psf_wavelength_ && f_number_;
+    if (seeing_) {
+      const double f = opt(focal_length_);
+      const double seeing = a.value(*seeing_) * f;
+      double optics = opt(gaussian_fwhm_);
+      if (airy) optics = physics::diffraction_fwhm_rad(a.value(*psf_wavelength_), f / a.value(*f_number_)) * f;
+      fwhm = std::hypot(seeing, optics);
+    } else if (gaussian_fwhm_) {
+      fwhm = a.value(*gaussian_fwhm_);
+    }
+    double neff = 1.0, peak_fraction = 1.0, ensquared = 1.0;
+    const double n = *window_;
+    if (fwhm > 0) {
+      neff = physics::gaussian_noise_equivalent_area_px(fwhm / binned);
+      peak_fraction = physics::gaussian_peak_pixel_fraction(fwhm / pitch);
+      ensquared = physics::gaussian_ensquared_energy(n * binned, fwhm);
+    } else if (airy) {
+      const double lambda = a.value(*psf_wavelength_), fn = a.value(*f_number_), eps = opt(obscuration_);
+      peak_fraction = physics::airy_ensquared_energy(pitch, lambda, fn, eps);
+      ensquared = physics::airy_ensquared_energy(n * binned, lambda, fn, eps);
+      // n_eff of the Airy core approximated by a Gaussian of the same FWHM (physics::diffraction_fwhm_rad).
+      neff = physics::gaussian_noise_equivalent_area_px(physics::diffraction_fwhm_rad(lambda, 1.0) * fn / binned);
+    }
+    if (params_.given("ensquared_energy")) ensquared = *ensquared_;
+    if (psf_photometry_) ensquared = 1.0;
+
+    const double image1 = a.signal_scale() * qe * photon_rate_per_scale_ * t * tdi;  // one frame, all pixels
+    const double signal1 = ensquared * image1;
+    double sky_native = 0.0;  // one native pixel, one TDI stage
+    if (sky_) {
+      const double omega_arcsec2 = std::pow(pitch / a.value(*focal_length_) * arcsec_per_rad, 2);
+      sky_native = t * qe * ab_zero_f_nu_rate() * a.value(*area_) * a.value(*transmittance_) * omega_arcsec2 *
+                   std::pow(10.0, -0.4 * a.value(*sky_));
+    }
+    const double sky_binned = b * b * tdi * sky_native;
+    const double dark_binned = b * b * tdi * *dark_current_ * t;
+    const double quant_var = physics::emva_quantisation_variance_e2(gain);
+    const double read_var_binned = b * b * (*dark_noise_ * *dark_noise_ + quant_var + *other_ * *other_);
+    const double pixels = psf_photometry_ ? neff : n * n;
+    const double temporal = m * (signal1 + pixels * (sky_binned + dark_binned + read_var_binned));
+    const double prnu_amp = m * *prnu_ * signal1 / std::sqrt(neff);
+    const double spatial = m * m * pixels * b * b * *dsnu_ * *dsnu_ + prnu_amp * prnu_amp;
+    const double noise = std::sqrt(temporal + spatial);
+    const double signal = m * signal1;
+
+    const double levels = static_cast<double>(std::uint64_t{1} << static_cast<int>(*bits_));
+    const double capacity = std::min(*saturation_, (levels - 1.0) / gain);
+    const double peak = peak_fraction * image1 + tdi * (sky_native + *dark_current_ * t);
+
+    a.set(id_signal_, signal);
+    a.set(id_noise_, noise);
+    a.set(id_snr_, signal / noise);
+    a.set(id_time_, t);
+    a.set(id_fill_, peak / capacity);
+    a.set(id_peak_, peak);
+    a.set(id_saturation_, capacity);
+    a.set(id_sky_, sky_binned);
+    a.set(id_pixels_, pixels);
+    a.set(id_neff_, neff);
+    if (!a.full_detail()) return;
+    a.set(id_image_, m * image1);
+    a.set(id_ensquared_, ensquared);
+    a.set(id_gain_, gain);
+    a.set(id_tdi_, tdi);
+    a.set(id_peak_fraction_, peak_fraction);
+    a.set(id_psf_fwhm_, fwhm);
+    a.set(id_quant_, std::sqrt(quant_var));
+    a.set(id_dark_, pixels * dark_binned);
+    a.set(id_read_noise_, std::sqrt(pixels * b * b) * *dark_noise_);
+    a.set(id_background_, pixels * sky_binned);
+    a.set(id_shot_noise_, std::sqrt(signal));
+    a.set(id_prnu_noise_, prnu_amp);
+    a.set(id_ab_zero_, ab_electrons_per_m2_s_);
+    if (band_magnitude_) a.set(*id_zero_point_, a.value(*band_magnitude_) + 2.5 * std::log10(image1 / (tdi * t)));
+  }
+
+ private:
+  double ab_zero_f_nu_rate() const { return ab_electrons_per_m2_s_; }
+
+  const Params& params_;
+  const double *qe_, *time_, *gain_, *dark_noise_, *saturation_, *dark_current_, *prnu_, *dsnu_, *other_, *bits_,
+      *binning_, *exposures_, *tdi_, *pitch_, *window_, *ensquared_;
+  bool psf_photometry_;
+  double photon_rate_per_scale_ = 0, ab_electrons_per_m2_s_ = 0;
+  std::optional<ResultId> psf_wavelength_, gaussian_fwhm_, f_number_, obscuration_, focal_length_, aperture_, area_,
+      transmittance_, seeing_, sky_, band_magnitude_, id_zero_point_;
+  ResultId id_image_{}, id_signal_{}, id_noise_{}, id_snr_{}, id_time_{}, id_pixels_{}, id_ensquared_{}, id_neff_{},
+      id_fill_{}, id_peak_{}, id_saturation_{}, id_gain_{}, id_tdi_{}, id_sky_{}, id_peak_fraction_{}, id_psf_fwhm_{},
+      id_quant_{}, id_dark_{}, id_read_noise_{}, id_background_{}, id_shot_noise_{}, id_prnu_noise_{}, id_ab_zero_{};
+};
+
+}  // namespace
+
+RADCHAIN_PLUGIN(Emva1288, {
+    .summary = "CMOS/CCD camera from its EMVA 1288 datasheet: gain, dark noise, DSNU/PRNU, saturation, binning, "
+               "co-added frames, TDI; window or PSF-weighted (n_eff) photometry; sky by étendue",
+    .reference = "EMVA Standard 1288 Release 4.0 Linear (2021) eqs. 1-6, 18, 29; King 1983 (n_eff); LSST SMTN-002",
+    .schema = schema,
+    .publishes = {vocabulary::detector_signal_electrons, vocabulary::detector_image_electrons,
+                  vocabulary::detector_noise_electrons, vocabulary::detector_snr, vocabulary::detector_integration_time,
+                  vocabulary::detector_window_pixel_count, vocabulary::detector_ensquared_energy,
+                  vocabulary::detector_sky_electrons_per_pixel, vocabulary::detector_peak_pixel_fill,
+                  vocabulary::detector_peak_pixel_electrons, vocabulary::detector_saturation_capacity,
+                  vocabulary::detector_noise_equivalent_area, vocabulary::detector_system_gain,
+                  vocabulary::detector_tdi_stages},
+    .needs = {if_present(vocabulary::optics_psf_wavelength), if_present(vocabulary::optics_gaussian_fwhm),
+              if_present(vocabulary::optics_f_number), if_present(vocabulary::optics_obscuration),
+              if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_aperture),
+              if_present(vocabulary::optics_collecting_area), if_present(vocabulary::optics_transmittance),
+              if_present(vocabulary::atmosphere_seeing_fwhm), if_present(vocabulary::atmosphere_sky_brightness),
+              if_present(vocabulary::target_band_magnitude)},
+})
