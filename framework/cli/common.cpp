@@ -6,14 +6,16 @@
 
 namespace radchain::cli {
 
-// The stream a command writes to: --out file, or stdout.
 Sink::Sink(const std::string& path) {
-  if (path.empty()) return;
-  file_.open(path, std::ios::binary);
-  if (!file_) throw InputError(SourceLocation{"--out", 0, 0}, "", path, "cannot be written (missing folder or no permission)");
+  if (!path.empty()) file_.emplace(path, "--out");
 }
 
-std::ostream& Sink::stream() { return file_.is_open() ? static_cast<std::ostream&>(file_) : std::cout; }
+std::ostream& Sink::stream() { return file_ ? file_->stream() : std::cout; }
+
+void Sink::commit() {
+  if (file_) file_->commit();
+  else check_standard_output();
+}
 
 TableFormat format_of(const Output& output, TableFormat fallback) {
   if (!output.format.empty()) return parse_table_format(output.format);

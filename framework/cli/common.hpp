@@ -3,23 +3,26 @@
 #include "options.hpp"
 #include "overrides.hpp"
 
+#include "radchain/atomic_file.hpp"
 #include "radchain/batch/shard.hpp"
 #include "radchain/batch/table.hpp"
 
-#include <fstream>
+#include <optional>
 #include <ostream>
 #include <string>
 
 namespace radchain::cli {
 
-// The stream a command writes to: --out file, or stdout.
+// The stream a command writes to: --out file (atomic: a temporary renamed by commit(); without commit() nothing is
+// written and an existing file is untouched), or stdout (checked in main).
 class Sink {
  public:
   explicit Sink(const std::string& path);
   std::ostream& stream();
+  void commit();
 
  private:
-  std::ofstream file_;
+  std::optional<AtomicFile> file_;
 };
 
 TableFormat format_of(const Output& output, TableFormat fallback);

@@ -64,6 +64,7 @@ struct SweepCommand {
   std::string plot;
   Output output;
   Batch batch;
+  bool allow_large = false;  // --allow-large: a grid above SweepOptions::large_points
 };
 
 struct MergeCommand {

@@ -8,6 +8,8 @@
 // travel as one argument, separated by the unit separator (control characters are replaced by spaces first).
 #include "plot.hpp"
 
+#include "radchain/atomic_file.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -112,6 +114,7 @@ bool run_gnuplot(const std::vector<std::string>& arguments, const fs::path& log)
 void plot_sweep(const std::string& png_path, const std::string& title, const std::string& x_label,
                 const std::vector<double>& x, const std::vector<PlotSeries>& series) {
   if (series.empty()) throw std::runtime_error("nothing to plot");
+  AtomicFile png(png_path, "--plot");  // gnuplot draws into a temporary; renamed only once it succeeded
   static std::atomic<int> counter{0};
   const fs::path dir = fs::temp_directory_path() / fmt::format("radchain-plot-{}-{}", ::getpid(), counter++);
   fs::create_directories(dir);
@@ -145,7 +148,7 @@ void plot_sweep(const std::string& png_path, const std::string& title, const std
   };
   auto run = [&](const std::string& terminal) {
     write_script(terminal);
-    return run_gnuplot({"-c", script.string(), png_path, data.string(), plain_text(title), plain_text(x_label), y_labels},
+    return run_gnuplot({"-c", script.string(), png.temporary_path(), data.string(), plain_text(title), plain_text(x_label), y_labels},
                        log);
   };
   bool drawn = false;
@@ -163,6 +166,7 @@ void plot_sweep(const std::string& png_path, const std::string& title, const std
   std::error_code ec;
   fs::remove_all(dir, ec);
   if (!drawn) throw std::runtime_error(why);
+  png.commit();
 }
 
 }  // namespace radchain::cli

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -114,9 +115,13 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
   axis.range = range;
   const std::string steps_text = trimmed(parts[2]);
   char* end = nullptr;
+  errno = 0;
   const long long steps = std::strtoll(steps_text.c_str(), &end, 10);
   if (steps_text.empty() || *end != '\0' || steps < 1)
     throw fail(fmt::format("steps \"{}\" must be a whole number >= 1, e.g. {}", steps_text, example));
+  // An overflowing count (strtoll clamps it) or more steps than a whole grid may have: refused before any work.
+  if (errno == ERANGE || static_cast<double>(steps) > SweepOptions::max_points)
+    throw fail(fmt::format("steps \"{}\" is more than {:g}: use fewer steps", steps_text, SweepOptions::max_points));
   axis.steps = static_cast<std::size_t>(steps);
 
   const bool dimensionless = spec.type != ParamType::quantity || units::dimension_of(spec.si_unit) == "1";
@@ -150,7 +155,9 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
   } catch (const std::domain_error&) {
     throw fail("wrong unit: expected " + expected);
   }
-  for (std::size_t i = 0; i < axis.steps; ++i) {
+  // The values are a linear ramp, so its ends decide the range; integers are checked on the first 1024 steps and the
+  // last (a ramp whose first steps land on whole numbers has a whole step). Never a loop over 10^10 steps.
+  for (std::size_t i = 0; i < axis.steps; i = (i + 1 < 1024 || i + 1 == axis.steps) ? i + 1 : axis.steps - 1) {
     const double v = axis.value_si(i);
     if (!spec.in_range(v))
       throw fail(fmt::format("{:g}{} is out of range: accepted {}", axis.value(i), axis.unit.empty() ? "" : " " + axis.unit,
@@ -185,12 +192,17 @@ Sweep::Sweep(SweepOptions options) : options_(std::move(options)) {
     }
     units_.push_back(results.info(*id).display_unit);
   }
-  constexpr double max_points = 1e10;
+  constexpr double max_points = SweepOptions::max_points;
   double points = 1;
   for (const auto& a : axes_) points *= static_cast<double>(a.steps);
   if (points > max_points)
     throw InputError(SourceLocation{"sweep", 0, 0}, "", "",
                      fmt::format("the grid has {:g} points: more than {:g} (split it, or use fewer steps)", points, max_points));
+  if (points > SweepOptions::large_points && !options_.allow_large)
+    throw InputError(SourceLocation{"sweep", 0, 0}, "", "",
+                     fmt::format("the grid has {:g} points: more than {:g}, hours of work and gigabytes of output; "
+                                 "give --allow-large to run it",
+                                 points, SweepOptions::large_points));
   points_ = static_cast<std::size_t>(points);
 }
 

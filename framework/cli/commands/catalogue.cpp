@@ -29,6 +29,7 @@ int catalogue(const CatalogueCommand& command) {
   const int code = run_catalogue(files, options, writer, &errors);
   progress.stop();
   writer.finish(code);
+  sink.commit();
   for (const auto& e : errors) std::cerr << e << "\n";
   return code;
 }

@@ -27,6 +27,7 @@ int compare(const CompareCommand& command) {
   const Comparison comparison = radchain::compare(a, b);
   Sink sink(command.output.out);
   write_comparison(comparison, format, sink.stream(), tolerance);
+  sink.commit();
   return tolerance && count_exceeding(comparison, *tolerance) > 0 ? 1 : 0;
 }
 

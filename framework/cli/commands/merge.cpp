@@ -11,7 +11,11 @@ int merge(const MergeCommand& command) {
   else if (!command.output.out.empty())
     format = table_format_of_path(command.output.out);
   Sink sink(command.output.out);
-  return merge_shards(command.shards, sink.stream(), format);
+  // The output is a temporary until every shard has been read and merged: a failed merge leaves an existing --out
+  // untouched, and --out naming one of the shards replaces it only with the complete merge.
+  const int code = merge_shards(command.shards, sink.stream(), format);
+  sink.commit();
+  return code;
 }
 
 }  // namespace radchain::cli

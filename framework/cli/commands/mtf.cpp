@@ -4,6 +4,7 @@
 #include "../overrides.hpp"
 #include "../plot.hpp"
 
+#include "radchain/atomic_file.hpp"
 #include "radchain/error.hpp"
 #include "radchain/imaging/mtf_curves.hpp"
 
@@ -22,8 +23,9 @@ int mtf_command(const MtfCommand& options) {
   if (options.out.empty()) {
     std::cout << csv;
   } else {
-    std::ofstream file(options.out);
-    if (!(file << csv)) throw InputError(SourceLocation{options.out, 0, 0}, "mtf", "--out", "cannot be written");
+    AtomicFile file(options.out, "--out");
+    file.stream() << csv;
+    file.commit();
   }
   if (!options.plot.empty()) {
     std::vector<double> frequency_mm;

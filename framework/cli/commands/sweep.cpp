@@ -29,6 +29,7 @@ int sweep(const SweepCommand& command) {
     throw InputError(SourceLocation{"sweep", 0, 0}, "", "",
                      "no axis: give at least one --set <section>.<key>=from:to:steps, e.g. --set optics.aperture=\"15 cm:30 cm:16\"");
   options.results = command.results;
+  options.allow_large = command.allow_large;
   options.shard = shard_of(command.batch);
   const TableFormat format = format_of(command.output, TableFormat::csv);
   if (!command.plot.empty() && options.axes.size() != 1)
@@ -77,6 +78,7 @@ int sweep(const SweepCommand& command) {
   const int code = sweep.run(writer, &failure, plotted.empty() ? std::function<void(std::size_t, const double*)>() : observer);
   progress.stop();
   writer.finish(code);
+  sink.commit();
   if (code != 0) std::cerr << "radchain sweep: " << failure << "\n";
   if (!command.plot.empty()) {
     const SweepAxis& axis = sweep.axes().front();
@@ -84,7 +86,7 @@ int sweep(const SweepCommand& command) {
     try {
       plot_sweep(command.plot, chain.sensor_name + " — " + options.sensor_file, x_label, x, series);
     } catch (const std::runtime_error& error) {
-      if (dynamic_cast<const InputError*>(&error)) throw;
+      if (dynamic_cast<const InputError*>(&error) || dynamic_cast<const WriteError*>(&error)) throw;
       throw InputError(SourceLocation{"--plot", 0, 0}, "", command.plot, error.what());
     }
   }

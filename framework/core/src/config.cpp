@@ -16,9 +16,58 @@ SourceLocation location_of(const toml::node& node, const std::string& file) {
   return SourceLocation{file, static_cast<int>(begin.line), static_cast<int>(begin.column)};
 }
 
-ConfigValue convert(const toml::node& node, const std::string& file) {
+// Limits on the shape of a document (issue 18): a dotted key of thousands of parts overflowed the stack, in the
+// conversion below and (at ~50,000 parts) inside toml++. No sensor file needs more than a few levels.
+constexpr std::size_t max_key_parts = 64;    // parts of one dotted key or table header
+constexpr std::size_t max_depth = 128;       // tables and arrays nested (toml++ caps inline nesting at 256)
+constexpr std::size_t max_key_length = 256;  // characters of one key
+
+// Before toml++ sees the text: the dots of each key, outside strings and comments. A value has at most one dot
+// (1.5, a time's fraction), so counting every dot between two of = [ ] { } , and a line end is conservative.
+void check_key_parts(std::string_view text, const std::string& file) {
+  int line = 1, column = 0;
+  std::size_t dots = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      column = 0;
+      dots = 0;
+      continue;
+    }
+    ++column;
+    if (c == '#') {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+    } else if (c == '"' || c == '\'') {
+      const bool triple = text.substr(i, 3) == std::string(3, c);
+      i += triple ? 3 : 1;
+      for (; i < text.size(); ++i) {
+        if (text[i] == '\n') {
+          if (!triple) break;  // an unterminated string: toml++ reports it
+          ++line;
+          column = 0;
+        } else if (c == '"' && text[i] == '\\' && i + 1 < text.size() && text[i + 1] != '\n') {
+          ++i;
+        } else if (text[i] == c && (!triple || text.substr(i, 3) == std::string(3, c))) {
+          if (triple) i += 2;
+          break;
+        }
+      }
+      if (i < text.size() && text[i] == '\n') --i;  // the line end is counted above
+    } else if (c == '=' || c == '[' || c == ']' || c == '{' || c == '}' || c == ',') {
+      dots = 0;
+    } else if (c == '.' && ++dots >= max_key_parts) {
+      throw InputError(SourceLocation{file, line, column}, "TOML syntax", "",
+                       fmt::format("a dotted key of more than {} parts (no sensor file nests that deep)", max_key_parts));
+    }
+  }
+}
+
+ConfigValue convert(const toml::node& node, const std::string& file, std::size_t depth = 0) {
   ConfigValue out;
   out.where = location_of(node, file);
+  if (depth > max_depth)
+    throw InputError(out.where, "TOML syntax", "", fmt::format("tables or arrays nested more than {} deep", max_depth));
   switch (node.type()) {
     case toml::node_type::string:
       out.type = ConfigValue::Type::string;
@@ -38,12 +87,15 @@ ConfigValue convert(const toml::node& node, const std::string& file) {
       break;
     case toml::node_type::array:
       out.type = ConfigValue::Type::array;
-      for (const auto& item : *node.as_array()) out.items.push_back(convert(item, file));
+      for (const auto& item : *node.as_array()) out.items.push_back(convert(item, file, depth + 1));
       break;
     case toml::node_type::table: {
       out.type = ConfigValue::Type::table;
       for (const auto& [key, value] : *node.as_table()) {
-        ConfigValue member = convert(value, file);
+        if (key.str().size() > max_key_length)
+          throw InputError(location_of(value, file), "TOML syntax", std::string(key.str().substr(0, 40)) + "…",
+                           fmt::format("a key of {} characters: at most {}", key.str().size(), max_key_length));
+        ConfigValue member = convert(value, file, depth + 1);
         // The key's own position is where an "unknown key" error should point.
         const auto& key_begin = key.source().begin;
         if (key_begin.line) member.where = SourceLocation{file, int(key_begin.line), int(key_begin.column)};
@@ -64,6 +116,7 @@ ConfigValue convert(const toml::node& node, const std::string& file) {
 
 ConfigValue parse(std::string_view text, const std::string& name) {
   try {
+    check_key_parts(text, name);
     toml::table table = toml::parse(text, std::string_view(name));
     ConfigValue root = convert(table, name);
     root.where = SourceLocation{name, 0, 0};
@@ -139,6 +192,7 @@ ConfigValue parse_toml_text(const std::string& text, const std::string& name_for
 
 ConfigValue parse_toml_value(const std::string& text, const std::string& name_for_messages) {
   try {
+    check_key_parts(text, name_for_messages);
     toml::table table = toml::parse("v = " + text, std::string_view(name_for_messages));
     ConfigValue value = convert(*table.get("v"), name_for_messages);
     value.where = SourceLocation{name_for_messages, 0, 0};

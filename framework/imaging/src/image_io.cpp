@@ -1,4 +1,5 @@
 // Images and files through OpenImageIO 2.4 (what its FITS writer does with metadata: render_image.hpp).
+#include "radchain/atomic_file.hpp"
 #include "radchain/imaging/image.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -162,8 +163,9 @@ void write_fits(const std::string& path, const Image& image, const Header& heade
   }
   auto out = OIIO::ImageOutput::create(path);
   if (!out) oiio_failure("cannot write", path, {});
+  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
   if (out->format_name() != std::string("fits")) throw std::invalid_argument("write_fits: \"" + path + "\" is not a .fits path");
-  if (!out->open(path, spec)) oiio_failure("cannot write", path, out->geterror());
+  if (!out->open(file.temporary_path(), spec)) oiio_failure("cannot write", path, out->geterror());
   bool ok = false;
   switch (pixel) {
     case FitsPixel::int16: ok = out->write_image(OIIO::TypeDesc::INT16, integers<std::int16_t>(image).data()); break;
@@ -172,6 +174,7 @@ void write_fits(const std::string& path, const Image& image, const Header& heade
   }
   if (!ok) oiio_failure("cannot write", path, out->geterror());
   if (!out->close()) oiio_failure("cannot write", path, out->geterror());
+  file.commit();
 }
 
 void write_float_image(const std::string& path, const Image& image, const Header& header) {
@@ -180,9 +183,11 @@ void write_float_image(const std::string& path, const Image& image, const Header
   for (const auto& card : header) spec.attribute("radchain:" + card.key, card_value_text(card));
   auto out = OIIO::ImageOutput::create(path);
   if (!out) oiio_failure("cannot write", path, {});
-  if (!out->open(path, spec)) oiio_failure("cannot write", path, out->geterror());
+  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
+  if (!out->open(file.temporary_path(), spec)) oiio_failure("cannot write", path, out->geterror());
   if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) oiio_failure("cannot write", path, out->geterror());
   if (!out->close()) oiio_failure("cannot write", path, out->geterror());
+  file.commit();
 }
 
 ImageFile read_image(const std::string& path, PixelValues values) {
@@ -319,10 +324,11 @@ void write_preview(const std::string& path, const Image& image, const PreviewOpt
       wide[static_cast<std::size_t>(y) * w + x] = static_cast<std::uint16_t>(std::lround(display(image(x / up, y / up)) * top));
   auto out = OIIO::ImageOutput::create(path);
   if (!out) oiio_failure("cannot write", path, {});
+  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
   const OIIO::TypeDesc type = png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
   OIIO::ImageSpec spec(w, h, 1, type);
   spec.attribute("Software", "radchain render");
-  if (!out->open(path, spec)) oiio_failure("cannot write", path, out->geterror());
+  if (!out->open(file.temporary_path(), spec)) oiio_failure("cannot write", path, out->geterror());
   bool ok = false;
   if (png) {
     std::vector<std::uint8_t> narrow(wide.begin(), wide.end());
@@ -331,6 +337,7 @@ void write_preview(const std::string& path, const Image& image, const PreviewOpt
     ok = out->write_image(OIIO::TypeDesc::UINT16, wide.data());
   }
   if (!ok || !out->close()) oiio_failure("cannot write", path, out->geterror());
+  file.commit();
 }
 
 void write_png16(const std::string& path, const Image& image) {
@@ -340,10 +347,12 @@ void write_png16(const std::string& path, const Image& image) {
     values[i] = static_cast<std::uint16_t>(std::lround(std::clamp(static_cast<double>(image.pixels[i]), 0.0, 1.0) * 65535.0));
   auto out = OIIO::ImageOutput::create(path);
   if (!out) oiio_failure("cannot write", path, {});
+  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
   OIIO::ImageSpec spec(image.width, image.height, 1, OIIO::TypeDesc::UINT16);
   spec.attribute("png:compressionLevel", 9);
-  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT16, values.data()) || !out->close())
+  if (!out->open(file.temporary_path(), spec) || !out->write_image(OIIO::TypeDesc::UINT16, values.data()) || !out->close())
     oiio_failure("cannot write", path, out->geterror());
+  file.commit();
 }
 
 }  // namespace radchain::render

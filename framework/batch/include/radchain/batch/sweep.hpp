@@ -48,6 +48,11 @@ struct SweepOptions {
   std::vector<std::string> results;                       // result columns; empty: every result
   ShardSpec shard;
   std::atomic<std::size_t>* progress = nullptr;           // counts finished points
+  // A grid of more than large_points is refused unless allow_large (--allow-large): hours of work and gigabytes of
+  // output should be asked for, not started by a typo. Above max_points it is refused outright.
+  bool allow_large = false;
+  static constexpr double large_points = 1e8;
+  static constexpr double max_points = 1e10;
 };
 
 class Sweep {

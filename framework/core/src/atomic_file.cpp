@@ -1,0 +1,163 @@
+#include "radchain/atomic_file.hpp"
+
+#include "radchain/error.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <streambuf>
+
+namespace radchain {
+namespace {
+
+// The temporaries not yet committed, as C strings a signal handler can unlink (no allocation, no lock).
+constexpr int max_pending = 64;
+std::atomic<char*> pending[max_pending];
+std::atomic<unsigned> temporary_counter{0};
+
+int register_pending(const std::string& path) {
+  char* copy = ::strdup(path.c_str());
+  if (!copy) return -1;
+  for (int i = 0; i < max_pending; ++i) {
+    char* expected = nullptr;
+    if (pending[i].compare_exchange_strong(expected, copy)) return i;
+  }
+  std::free(copy);
+  return -1;
+}
+
+void unregister_pending(int slot) {
+  if (slot < 0) return;
+  std::free(pending[slot].exchange(nullptr));
+}
+
+std::string reason(int error) { return std::strerror(error); }
+
+}  // namespace
+
+// A streambuf over the file descriptor, so a failed write keeps its errno (ENOSPC, EFBIG) for the message.
+struct AtomicFile::Buffer : std::streambuf {
+  int fd;
+  int error = 0;
+  char data[1 << 16];
+  explicit Buffer(int f) : fd(f) { setp(data, data + sizeof data); }
+  bool drain() {
+    const char* p = pbase();
+    while (p < pptr() && error == 0) {
+      const ssize_t n = ::write(fd, p, static_cast<std::size_t>(pptr() - p));
+      if (n < 0) {
+        if (errno != EINTR) error = errno;
+      } else {
+        p += n;
+      }
+    }
+    setp(data, data + sizeof data);
+    return error == 0;
+  }
+  int_type overflow(int_type c) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+};
+
+AtomicFile::AtomicFile(std::string path, std::string what) : path_(std::move(path)), what_(std::move(what)) {
+  namespace fs = std::filesystem;
+  struct stat st {};
+  if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    if (S_ISDIR(st.st_mode)) throw InputError(SourceLocation{what_, 0, 0}, "", path_, "is a folder, not a file");
+    in_place_ = true;  // a device or a FIFO: written in place
+    temporary_ = path_;
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd_ < 0) throw InputError(SourceLocation{what_, 0, 0}, "", path_, "cannot be written: " + reason(errno));
+    return;
+  }
+  const fs::path target(path_);
+  const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  const std::string name = target.filename().string();
+  if (name.empty()) throw InputError(SourceLocation{what_, 0, 0}, "", path_, "names a folder, not a file");
+  // Hidden, in the same folder (rename stays on one file system), the target's name last so its extension is kept.
+  for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
+    temporary_ = (folder / (".radchain-" + std::to_string(::getpid()) + "-" + std::to_string(temporary_counter++) +
+                            "-" + name))
+                     .string();
+    fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd_ < 0 && errno != EEXIST) break;
+  }
+  if (fd_ < 0)
+    throw InputError(SourceLocation{what_, 0, 0}, "", path_,
+                     "cannot be written (" + reason(errno) + "; missing folder or no permission?)");
+  slot_ = register_pending(temporary_);
+}
+
+AtomicFile::~AtomicFile() { discard(); }
+
+void AtomicFile::discard() noexcept {
+  stream_.reset();
+  buffer_.reset();
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!committed_ && !in_place_ && !temporary_.empty()) ::unlink(temporary_.c_str());
+  unregister_pending(slot_);
+  slot_ = -1;
+}
+
+std::ostream& AtomicFile::stream() {
+  if (!stream_) {
+    buffer_ = std::make_unique<Buffer>(fd_);
+    stream_ = std::make_unique<std::ostream>(buffer_.get());
+  }
+  return *stream_;
+}
+
+void AtomicFile::commit() {
+  if (committed_) return;
+  auto fail = [&](int error) {
+    const std::string message = "cannot write " + path_ + ": " + reason(error) + (in_place_ ? "" : " (nothing written)");
+    discard();
+    throw WriteError(message);
+  };
+  if (stream_) {
+    stream_->flush();
+    if (buffer_->error) fail(buffer_->error);
+    if (!*stream_) fail(EIO);
+  }
+  if (!in_place_ && ::fsync(fd_) != 0) fail(errno);
+  const int closed = ::close(fd_);
+  fd_ = -1;
+  if (closed != 0 && errno != EINTR) fail(errno);
+  if (!in_place_ && ::rename(temporary_.c_str(), path_.c_str()) != 0) fail(errno);
+  committed_ = true;
+  unregister_pending(slot_);
+  slot_ = -1;
+}
+
+void AtomicFile::remove_pending() noexcept {
+  for (auto& slot : pending)
+    if (const char* path = slot.load()) ::unlink(path);
+}
+
+void check_standard_output() {
+  std::cout.flush();
+  errno = 0;
+  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
+  if (failed) {
+    const int error = errno ? errno : EIO;
+    std::clearerr(stdout);
+    throw WriteError("cannot write standard output: " + reason(error));
+  }
+}
+
+}  // namespace radchain

@@ -1,0 +1,157 @@
+// Regressions (issue 18): outputs are atomic. Every file radchain writes goes to a temporary in the same folder
+// and is renamed when complete; a write error (a full disk, /dev/full, a file size limit) is one line on stderr
+// and exit 3, never a truncated file with exit 0; a killed sweep leaves no output; merge --out naming one of its
+// own shards does not empty it, and a failed merge leaves an existing --out untouched.
+#include "cli_helpers.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+
+#include <chrono>
+#include <thread>
+
+namespace {
+using namespace radchain::test;
+
+const std::string cli = RADCHAIN_CLI;
+const std::string small_sweep = "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:4'";
+
+// A shell command line with stderr (and stdout unless the command redirects it) captured.
+CliResult run_shell(const Scratch& scratch, const std::string& command_line) {
+  static int counter = 0;
+  const fs::path out = scratch / ("shell_out" + std::to_string(counter) + ".txt");
+  const fs::path err = scratch / ("shell_err" + std::to_string(counter++) + ".txt");
+  const std::string command = "{ " + command_line + " ; } >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  CliResult result;
+  if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+  result.out = read_text(out);
+  result.err = read_text(err);
+  return result;
+}
+
+// Files of the scratch folder whose name starts with ".radchain-" (temporaries left behind).
+std::vector<std::string> leftovers(const Scratch& scratch) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(scratch.path()))
+    if (entry.path().filename().string().rfind(".radchain-", 0) == 0) names.push_back(entry.path().filename().string());
+  return names;
+}
+
+TEST(AtomicOutput, DevFullAsOutIsAnErrorForEveryTableCommand) {
+  Scratch scratch;
+  const fs::path shard = scratch / "one.shard";
+  ASSERT_EQ(run_cli(scratch, small_sweep + " --shard 1/1 --out '" + shard.string() + "'").exit_code, 0);
+  const std::string commands[] = {
+      small_sweep + " --out /dev/full",
+      small_sweep + " --shard 1/2 --out /dev/full",
+      "catalogue '" + sbv_file + "' --out /dev/full",
+      "merge '" + shard.string() + "' --out /dev/full",
+      "compare '" + sbv_file + "' '" + sbv_file + "' --out /dev/full",
+  };
+  for (const auto& command : commands) {
+    const CliResult r = run_cli(scratch, command);
+    EXPECT_EQ(r.exit_code, 3) << command << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find("cannot write /dev/full: No space left on device"), std::string::npos) << command << "\n" << r.err;
+  }
+}
+
+TEST(AtomicOutput, StandardOutputOnAFullDeviceIsAnError) {
+  Scratch scratch;
+  for (const std::string& command : {"run '" + sbv_file + "'", "run '" + sbv_file + "' --format json", small_sweep,
+                                     "catalogue '" + sbv_file + "'"}) {
+    const CliResult r = run_shell(scratch, "'" + cli + "' " + command + " >/dev/full");
+    EXPECT_EQ(r.exit_code, 3) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find("cannot write standard output: No space left on device"), std::string::npos) << command << "\n" << r.err;
+  }
+}
+
+// A full disk, simulated by a file size limit in the child (SIGXFSZ ignored, so the write fails with EFBIG).
+TEST(AtomicOutput, AFileSizeLimitLeavesNoTruncatedFileAndAnExistingOutUntouched) {
+  Scratch scratch;
+  const fs::path out = scratch / "sweep.csv";
+  const std::string big_sweep = "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:400'";
+  // without the limit the output is larger than the limit
+  const CliResult full = run_cli(scratch, big_sweep);
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  ASSERT_GT(full.out.size(), 64u * 1024u);
+  write_text(out, "previous contents\n");
+  // dash counts ulimit -f in 512-byte blocks, bash in 1024: either way 16-32 KiB
+  const CliResult r = run_shell(scratch, "trap '' XFSZ; ulimit -f 32; exec '" + cli + "' " + big_sweep + " --out '" + out.string() + "'");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(out), "previous contents\n");
+  EXPECT_TRUE(leftovers(scratch).empty());
+  // catalogue and merge the same way
+  const CliResult cat = run_shell(scratch, "trap '' XFSZ; ulimit -f 0; exec '" + cli + "' catalogue '" + sbv_file + "' --out '" + out.string() + "'");
+  EXPECT_EQ(cat.exit_code, 3) << cat.err;
+  EXPECT_EQ(read_text(out), "previous contents\n");
+  EXPECT_TRUE(leftovers(scratch).empty());
+}
+
+TEST(AtomicOutput, MergeOutNamingOneOfItsShardsGetsTheWholeMerge) {
+  Scratch scratch;
+  const fs::path a = scratch / "a.shard", b = scratch / "b.shard";
+  ASSERT_EQ(run_cli(scratch, small_sweep + " --shard 1/2 --out '" + a.string() + "'").exit_code, 0);
+  ASSERT_EQ(run_cli(scratch, small_sweep + " --shard 2/2 --out '" + b.string() + "'").exit_code, 0);
+  const CliResult merged = run_cli(scratch, "merge '" + a.string() + "' '" + b.string() + "'");
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  ASSERT_FALSE(merged.out.empty());
+  const CliResult r = run_cli(scratch, "merge '" + a.string() + "' '" + b.string() + "' --out '" + a.string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(a), merged.out);
+  EXPECT_TRUE(leftovers(scratch).empty());
+}
+
+TEST(AtomicOutput, AFailedMergeLeavesAnExistingOutUntouched) {
+  Scratch scratch;
+  const fs::path a = scratch / "a.shard", out = scratch / "merged.csv";
+  ASSERT_EQ(run_cli(scratch, small_sweep + " --shard 1/2 --out '" + a.string() + "'").exit_code, 0);
+  write_text(out, "previous contents\n");
+  const CliResult r = run_cli(scratch, "merge '" + a.string() + "' --out '" + out.string() + "'");  // 2/2 missing
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(read_text(out), "previous contents\n");
+  EXPECT_TRUE(leftovers(scratch).empty());
+}
+
+// Starts a sweep far too large to finish, waits (bounded) until its temporary output exists, sends `signal` and
+// expects: death by that signal, a message, no output file, no temporary.
+void kill_a_running_sweep(int signal, const std::string& message) {
+  Scratch scratch;
+  const fs::path out = scratch / "killed.csv", err = scratch / "killed.err";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(e, STDERR_FILENO);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, STDOUT_FILENO);
+    ::signal(SIGINT, SIG_DFL);
+    ::execl(cli.c_str(), cli.c_str(), "sweep", sbv_file.c_str(), "--set", "optics.aperture=15 cm:30 cm:3000", "--set",
+            "target.magnitude=5:15:3000", "--out", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  bool started = false;
+  for (int i = 0; i < 3000 && !started; ++i) {  // at most 30 s
+    started = !leftovers(scratch).empty();
+    if (!started) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(started) << read_text(err);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // some rows written
+  ::kill(pid, signal);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << status << " " << read_text(err);
+  EXPECT_NE(read_text(err).find(message), std::string::npos) << read_text(err);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_TRUE(leftovers(scratch).empty());
+}
+
+TEST(AtomicOutput, SigtermStopsASweepWithoutOutput) { kill_a_running_sweep(SIGTERM, "terminated (SIGTERM); no output file was written"); }
+TEST(AtomicOutput, SigintStopsASweepWithoutOutput) { kill_a_running_sweep(SIGINT, "interrupted (SIGINT); no output file was written"); }
+
+}  // namespace

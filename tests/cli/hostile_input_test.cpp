@@ -1,0 +1,137 @@
+// Regressions (issue 18): results that lie, plugins that misbehave, absurd but well-formed requests and
+// documents shaped to exhaust the stack. Each gives a clear error and an exit code, never a crash or a hang.
+#include "cli_helpers.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+using namespace radchain::test;
+
+const std::string test_plugins = RADCHAIN_BINARY_DIR "/test_plugins";
+
+// --- results that lie ----------------------------------------------------------------------------------------
+
+TEST(HostileInput, AFailedSolveReportsNaNNotTheBracketEnd) {
+  Scratch scratch;
+  const fs::path file = scratch / "unsolvable.toml";
+  write_text(file, sbv_with("bracket = [5, 25]", "bracket = [5, 6]"));  // the root is near 15
+  const CliResult text = run_cli(scratch, "run '" + file.string() + "'");
+  EXPECT_EQ(text.exit_code, 1) << text.err;
+  EXPECT_NE(text.out.find("FAILED"), std::string::npos) << text.out;
+  std::string magnitude_line;
+  std::istringstream lines(text.out);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find("  target.magnitude ") == 0) magnitude_line = line;
+  std::istringstream cells(magnitude_line);
+  std::string name, value;
+  cells >> name >> value;
+  EXPECT_EQ(value, "-") << text.out;  // how the report shows a value that is not a number
+
+  const CliResult json = run_cli(scratch, "run '" + file.string() + "' --format json");
+  EXPECT_EQ(json.exit_code, 1) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  bool seen = false;
+  for (const auto& r : j["results"])
+    if (r["name"] == "target.magnitude") {
+      seen = true;
+      EXPECT_TRUE(r["value"].is_null()) << r.dump();
+    }
+  EXPECT_TRUE(seen) << json.out;
+  EXPECT_FALSE(j["solves"][0]["converged"].get<bool>());
+}
+
+// --- plugins ------------------------------------------------------------------------------------------------
+
+TEST(HostileInput, APluginThrowingANonStdExceptionIsAnInternalErrorNotAnAbort) {
+  Scratch scratch;
+  const fs::path file = scratch / "throws.toml";
+  write_text(file, sbv_with("plugin = \"none\"", "plugin = \"throws_int\""));
+  const CliResult r = run_cli(scratch, "--plugin-path '" RADCHAIN_BINARY_DIR "/test_plugins_throw' run '" + file.string() + "'");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("not a std::exception"), std::string::npos) << r.err;
+}
+
+TEST(HostileInput, PluginsListsEveryLibraryAndMarksTheBadOnes) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "--plugin-path '" + test_plugins + "' plugins");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  for (const char* bad : {"bad_abi", "no_entry"}) {
+    const auto at = r.out.find(std::string(bad) + " ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("UNUSABLE", at), std::string::npos) << r.out;
+  }
+  EXPECT_NE(r.out.find("telescope "), std::string::npos) << r.out;  // the good ones are listed too
+  EXPECT_NE(r.out.find("snr_threshold "), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("2 of "), std::string::npos) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+}
+
+// --- limits ------------------------------------------------------------------------------------------------
+
+TEST(HostileInput, SweepStepCountsThatOverflowOrAreHugeAreRefusedQuickly) {
+  Scratch scratch;
+  for (const char* steps : {"99999999999999999999999", "20000000000", "9223372036854775807"}) {
+    const CliResult r = run_cli(scratch, "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:" + steps + "'");
+    EXPECT_EQ(r.exit_code, 2) << steps << " " << r.err;
+    EXPECT_NE(r.err.find("is more than 1e+10"), std::string::npos) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  }
+  // 10^9 steps pass validation at once (the range is checked at its ends), then ask for --allow-large
+  const CliResult big = run_cli(scratch, "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:1000000000'");
+  EXPECT_EQ(big.exit_code, 2) << big.err;
+  EXPECT_NE(big.err.find("give --allow-large"), std::string::npos) << big.err;
+}
+
+TEST(HostileInput, ALargeSweepNeedsAllowLarge) {
+  Scratch scratch;
+  const std::string grid = "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:20000' --set 'target.magnitude=5:15:20000'";
+  const CliResult r = run_cli(scratch, grid);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("the grid has 4e+08 points: more than 1e+08"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  // with the flag it starts: one shard of 100000 runs 4000 points
+  const CliResult allowed = run_cli(scratch, grid + " --allow-large --shard 100000/100000 --results detector.snr");
+  EXPECT_EQ(allowed.exit_code, 0) << allowed.err;
+  EXPECT_EQ(count_lines(allowed.out), 4000u + 3u);  // header, column names, rows, trailer
+}
+
+TEST(HostileInput, ADottedKeyOfThousandsOfPartsIsRefusedNotAStackOverflow) {
+  Scratch scratch;
+  for (std::size_t parts : {65u, 5000u, 100000u}) {
+    std::string key = "optics";
+    for (std::size_t i = 1; i < parts; ++i) key += ".a";
+    const fs::path file = scratch / "deep.toml";
+    write_text(file, read_text(sbv_file) + "\n" + key + " = 1\n");
+    const CliResult r = run_cli(scratch, "run '" + file.string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << parts << " " << r.err.substr(0, 300);
+    EXPECT_NE(r.err.find("a dotted key of more than 64 parts"), std::string::npos) << r.err.substr(0, 300);
+    EXPECT_EQ(count_lines(r.err), 1u);
+  }
+  // a table header the same way
+  std::string header = "[optics";
+  for (int i = 0; i < 3000; ++i) header += ".b";
+  const fs::path file = scratch / "deep_header.toml";
+  write_text(file, read_text(sbv_file) + "\n" + header + "]\nx = 1\n");
+  const CliResult r = run_cli(scratch, "run '" + file.string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err.substr(0, 300);
+  EXPECT_NE(r.err.find("deep_header.toml:"), std::string::npos) << r.err.substr(0, 300);
+  // a quoted key may hold dots: they are not parts
+  const fs::path quoted = scratch / "quoted.toml";
+  std::string dots(100, '.');
+  write_text(quoted, "# \"" + dots + "\"\n" + read_text(sbv_file));
+  EXPECT_EQ(run_cli(scratch, "run '" + quoted.string() + "'").exit_code, 0);
+}
+
+TEST(HostileInput, AnOverLongKeyIsRefused) {
+  Scratch scratch;
+  const fs::path file = scratch / "long.toml";
+  write_text(file, sbv_with("[optics]\n", "[optics]\n" + std::string(5000, 'k') + " = 1\n"));
+  const CliResult r = run_cli(scratch, "run '" + file.string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err.substr(0, 300);
+  EXPECT_NE(r.err.find("a key of 5000 characters: at most 256"), std::string::npos) << r.err.substr(0, 300);
+  EXPECT_EQ(count_lines(r.err), 1u);
+}
+
+}  // namespace
