@@ -42,7 +42,9 @@ TEST(EarthGeometry, HorizonAndBeyond) {
   EXPECT_NEAR(horizon, std::asin(R / (R + h)), 1e-15);
   EXPECT_NEAR(horizon / deg, 68.0, 0.1);  // 500 km: horizon ~68° off nadir (SMAD Table 5-3 style estimate)
   // At the horizon the slant range is the tangent length √(s² − R²).
-  EXPECT_NEAR(slant_range_m(h, horizon * (1 - 1e-12), R), std::sqrt((R + h) * (R + h) - R * R), 5.0);
+  // (ρ has an infinite slope there: 1e-12 of θ moves it by ~6 m, so 1e-5 relative)
+  const double tangent = std::sqrt((R + h) * (R + h) - R * R);
+  EXPECT_NEAR(slant_range_m(h, horizon * (1 - 1e-12), R), tangent, 1e-5 * tangent);
   EXPECT_THROW(slant_range_m(h, horizon + 0.01, R), LookPastHorizon);
   EXPECT_THROW(gsd_across_track_m(h, 80 * deg, 0, 1e-5, R), LookPastHorizon);
 }
@@ -71,6 +73,23 @@ TEST(EarthGeometry, FlatEarthLimit) {
   const double big = 1e13, h = 500 * km, ifov = 1e-6, theta = 40 * deg;  // R → ∞
   EXPECT_NEAR(gsd_in_look_plane_m(h, theta, ifov, big), h * ifov / std::pow(std::cos(theta), 2), 1e-6);
   EXPECT_NEAR(gsd_across_look_plane_m(h, theta, ifov, big), h * ifov / std::cos(theta), 1e-6);
+}
+
+TEST(EarthGeometry, CombinedRollAndPitchKeepTheCameraFrame) {
+  // Pixels along the line stay Δθ apart in angle at any (roll, pitch): across-track GSD ≈ ρ Δθ / cos(angle
+  // between the across direction and the ground) — checked here against the pure cases' symmetry: pitch then
+  // roll of equal size give the same off-nadir angle and slant range, and the along-track GSD at pure pitch ψ
+  // equals the across-track GSD at pure roll ψ.
+  const double h = 600 * km, ifov = 1e-6;
+  EXPECT_NEAR(gsd_along_track_m(h, 0, 25 * deg, ifov, R), gsd_across_track_m(h, 25 * deg, 0, ifov, R), 1e-9);
+  EXPECT_NEAR(gsd_across_track_m(h, 0, 25 * deg, ifov, R), gsd_along_track_m(h, 25 * deg, 0, ifov, R), 1e-9);
+  const double theta = off_nadir_angle_rad(20 * deg, 15 * deg);
+  // both GSDs lie between the perpendicular ρΔθ and the in-plane ρΔθ/cos η at the combined angle
+  const double lo = gsd_across_look_plane_m(h, theta, ifov, R), hi = gsd_in_look_plane_m(h, theta, ifov, R);
+  for (double g : {gsd_across_track_m(h, 20 * deg, 15 * deg, ifov, R), gsd_along_track_m(h, 20 * deg, 15 * deg, ifov, R)}) {
+    EXPECT_GE(g, lo * (1 - 1e-6));
+    EXPECT_LE(g, hi * (1 + 1e-6));
+  }
 }
 
 TEST(EarthGeometry, SwathIsTheArcBetweenTheEdgeLooks) {

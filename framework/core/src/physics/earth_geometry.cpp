@@ -23,13 +23,28 @@ void require_positive(double value, const char* what) {
   if (!(value > 0)) throw std::invalid_argument(fmt::format("{} must be positive, got {}", what, value));
 }
 
-// Ground point of the line of sight (roll φ, pitch ψ): Earth centre at the origin, satellite at (0, 0, R + h),
-// axes (along, across, up); the look direction is (sin ψ, cos ψ sin φ, −cos ψ cos φ).
-Vec ground_point(double altitude_m, double roll, double pitch, double earth_radius_m) {
-  const Vec d{std::sin(pitch), std::cos(pitch) * std::sin(roll), -std::cos(pitch) * std::cos(roll)};
+// Line of sight of a pixel at angle `across` from the centre of a line detector (camera frame: along the line,
+// the rotation Rx(across) of the boresight) in a camera turned by pitch ψ about the across-track axis and then by
+// roll φ about the along-track axis: d = Rx(φ) Ry(ψ) Rx(across) ẑ, in (along, across, nadir) axes
+//   d = (cos a sin ψ,  sin a cos φ + cos a cos ψ sin φ,  −sin a sin φ + cos a cos ψ cos φ).
+// At a = 0 this is (sin ψ, cos ψ sin φ, cos ψ cos φ); a neighbouring line (along track) is ψ ± b.
+Vec look_direction(double roll, double pitch, double across) {
+  const double ca = std::cos(across), sa = std::sin(across);
+  return {ca * std::sin(pitch), sa * std::cos(roll) + ca * std::cos(pitch) * std::sin(roll),
+          -sa * std::sin(roll) + ca * std::cos(pitch) * std::cos(roll)};
+}
+
+// Ground point of a line of sight d (nadir component d[2] > 0): Earth centre at the origin, satellite at
+// (0, 0, R + h), the ray S + t (d0, d1, −d2) meets the sphere at the slant range of θ = acos d[2].
+Vec ground_point(double altitude_m, const Vec& d, double earth_radius_m) {
   const double s = earth_radius_m + altitude_m;
-  const double t = slant_range_m(altitude_m, std::acos(std::clamp(-d[2], -1.0, 1.0)), earth_radius_m);
-  return {t * d[0], t * d[1], s + t * d[2]};
+  const double t = slant_range_m(altitude_m, std::acos(std::clamp(d[2], -1.0, 1.0)), earth_radius_m);
+  return {t * d[0], t * d[1], s - t * d[2]};
+}
+
+double arc_between(const Vec& a, const Vec& b, double earth_radius_m) {
+  // The angle between the two radius vectors by atan2(|a × b|, a · b): accurate for metre-scale separations.
+  return earth_radius_m * std::atan2(norm(cross(a, b)), dot(a, b));
 }
 
 }  // namespace
@@ -84,16 +99,13 @@ double gsd_across_look_plane_m(double altitude_m, double off_nadir_rad, double a
 
 double ground_distance_between_looks_m(double altitude_m, double roll1_rad, double pitch1_rad, double roll2_rad,
                                        double pitch2_rad, double earth_radius_m) {
-  const Vec a = ground_point(altitude_m, roll1_rad, pitch1_rad, earth_radius_m);
-  const Vec b = ground_point(altitude_m, roll2_rad, pitch2_rad, earth_radius_m);
-  // The angle between the two radius vectors by atan2(|a × b|, a · b): accurate for metre-scale separations.
-  return earth_radius_m * std::atan2(norm(cross(a, b)), dot(a, b));
+  return arc_between(ground_point(altitude_m, look_direction(roll1_rad, pitch1_rad, 0), earth_radius_m),
+                     ground_point(altitude_m, look_direction(roll2_rad, pitch2_rad, 0), earth_radius_m), earth_radius_m);
 }
 
 double gsd_across_track_m(double altitude_m, double roll_rad, double pitch_rad, double angular_sample_rad,
                           double earth_radius_m) {
-  return ground_distance_between_looks_m(altitude_m, roll_rad - angular_sample_rad / 2, pitch_rad,
-                                         roll_rad + angular_sample_rad / 2, pitch_rad, earth_radius_m);
+  return swath_m(altitude_m, roll_rad, pitch_rad, angular_sample_rad / 2, earth_radius_m);
 }
 
 double gsd_along_track_m(double altitude_m, double roll_rad, double pitch_rad, double angular_sample_rad,
@@ -103,8 +115,9 @@ double gsd_along_track_m(double altitude_m, double roll_rad, double pitch_rad, d
 }
 
 double swath_m(double altitude_m, double roll_rad, double pitch_rad, double half_field_rad, double earth_radius_m) {
-  return ground_distance_between_looks_m(altitude_m, roll_rad - half_field_rad, pitch_rad, roll_rad + half_field_rad,
-                                         pitch_rad, earth_radius_m);
+  return arc_between(ground_point(altitude_m, look_direction(roll_rad, pitch_rad, -half_field_rad), earth_radius_m),
+                     ground_point(altitude_m, look_direction(roll_rad, pitch_rad, half_field_rad), earth_radius_m),
+                     earth_radius_m);
 }
 
 double half_field_angle_rad(double line_length_m, double focal_length_m) {

@@ -43,20 +43,22 @@ double gsd_in_look_plane_m(double altitude_m, double off_nadir_rad, double angul
 double gsd_across_look_plane_m(double altitude_m, double off_nadir_rad, double angular_sample_rad,
                                double earth_radius_m);
 
-// Great-circle distance on the sphere between the ground points of two lines of sight given by (roll, pitch):
-// exact ray–sphere intersections (the quadratic above), then R · angle between them.
+// Great-circle distance on the sphere between the ground points of two boresights given by (roll, pitch), the
+// look direction Rx(roll) Ry(pitch) ẑ: exact ray–sphere intersections (the quadratic above), then R · angle.
 double ground_distance_between_looks_m(double altitude_m, double roll1_rad, double pitch1_rad, double roll2_rad,
                                        double pitch2_rad, double earth_radius_m);
 
-// Across-track and along-track GSD of a pixel of angular size Δθ looking at (roll φ, pitch ψ): the ground
-// distance between the centres of neighbouring pixels, φ ± Δθ/2 (across) and ψ ± Δθ/2 (along). For a pure roll
-// these equal the closed forms above (in-plane across, perpendicular along); for a pure pitch the other way round.
+// Across-track and along-track GSD of a pixel of angular size Δθ in a line camera turned by (roll φ, pitch ψ):
+// the ground distance between the centres of neighbouring pixels along the line (camera-frame angles ± Δθ/2,
+// direction Rx(φ) Ry(ψ) Rx(±Δθ/2) ẑ) and between neighbouring lines (pitch ψ ± Δθ/2). For a pure roll these
+// equal the closed forms above (in-plane across, perpendicular along); for a pure pitch the other way round.
 double gsd_across_track_m(double altitude_m, double roll_rad, double pitch_rad, double angular_sample_rad,
                           double earth_radius_m);
 double gsd_along_track_m(double altitude_m, double roll_rad, double pitch_rad, double angular_sample_rad,
                          double earth_radius_m);
-// Swath of a line of full angular width 2α (α = atan(l / 2f'), l the line length) centred on (roll, pitch): the
-// ground distance between the lines of sight at roll ± α. Throws LookPastHorizon if either edge misses the Earth.
+// Swath of a line of full angular width 2α (α = atan(l / 2f'), l the line length) in the camera turned by
+// (roll, pitch): the ground distance between the edge pixels' ground points (camera-frame angles ± α).
+// Throws LookPastHorizon if either edge misses the Earth.
 double swath_m(double altitude_m, double roll_rad, double pitch_rad, double half_field_rad, double earth_radius_m);
 // Half field angle of a line of length l behind focal length f': atan(l / 2f').
 double half_field_angle_rad(double line_length_m, double focal_length_m);
