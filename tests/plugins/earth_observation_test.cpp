@@ -9,8 +9,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <string>
+#include <unistd.h>
 
 namespace {
 using namespace radchain;
@@ -74,6 +77,43 @@ TEST(EarthObservation, Sentinel2DiffractionTimesPixelAtNyquist) {
   // swath: 2 R λ(10.3°), λ = η − θ (closed form)
   const double h = 786e3, a = 10.3 * deg, s = R + h;
   EXPECT_NEAR(value(r, "criteria.gsd.swath"), 2 * R * (std::asin(s * std::sin(a) / R) - a), 1e-3);
+}
+
+TEST(EarthObservation, AltitudeForAGsdAtALook) {
+  // The WorldView-2 camera at 20° roll: the altitude at which the geometric-mean GSD is 0.5 m, found by the
+  // chain's [[solve]] and, independently, by bisection on the closed form g(h) = ρ(h) IFOV / √cos η(h).
+  std::ifstream in(root + "sensors/worldview-2-pan-20deg.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text = text.substr(0, text.find("[expected]"));
+  text += "[[solve]]\nunknown = \"platform.altitude\"\ncriterion = \"gsd\"\nbracket = [\"300 km\", \"1500 km\"]\n";
+  const auto path = std::filesystem::temp_directory_path() / ("eo_altitude_" + std::to_string(::getpid()) + ".toml");
+  std::ofstream(path) << text;
+  Chain chain = load_sensor(path.string());
+  const Report r = chain.run();
+  std::filesystem::remove(path);
+  ASSERT_EQ(r.solves.size(), 1u);
+  EXPECT_TRUE(r.solves[0].converged) << r.solves[0].message;
+  const double ifov = 8e-6 / 13.3, theta = 20 * deg;
+  auto gsd = [&](double h) {
+    const double s = R + h;
+    const double rho = s * std::cos(theta) - std::sqrt(R * R - s * s * std::sin(theta) * std::sin(theta));
+    return rho * ifov / std::sqrt(std::cos(std::asin(s * std::sin(theta) / R)));
+  };
+  double lo = 300e3, hi = 1500e3;
+  for (int i = 0; i < 200; ++i) (gsd(0.5 * (lo + hi)) < 0.5 ? lo : hi) = 0.5 * (lo + hi);
+  EXPECT_NEAR(r.value("platform.altitude").value(), 0.5 * (lo + hi), 1e-3);
+  EXPECT_NEAR(r.value("criteria.gsd.gsd_geometric_mean").value(), 0.5, 1e-9);
+}
+
+TEST(EarthObservation, Giqe4OptionUsesTheEdgeOvershoot) {
+  Chain chain = load_sensor(root + "sensors/worldview-2-pan.toml", {Override{"criteria.iq.equation", "\"giqe4\""}});
+  const Report r = chain.run();
+  const double h = value(r, "criteria.iq.overshoot");
+  EXPECT_GT(h, 0.5);  // diffraction × pixel rises monotonically: H = ER(1.25) < 1
+  EXPECT_LT(h, 1.0);
+  EXPECT_NEAR(value(r, "criteria.iq.niirs"),
+              physics::giqe4_niirs(value(r, "criteria.iq.gsd_geometric_mean"), value(r, "criteria.iq.rer"), h, 1, 50),
+              1e-12);
 }
 
 }  // namespace
