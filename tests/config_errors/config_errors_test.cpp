@@ -72,6 +72,8 @@ const Case cases[] = {
     {"set_unknown_section", "", "--set 'optic.aperture=\"20 cm\"'"},
     {"look_past_horizon"},
     {"reflectance_above_one"},
+    {"band_outside_sed"},
+    {"band_outside_qe_curve"},
 };
 
 // How a case reads in test names and ctest listings (instead of a byte dump).

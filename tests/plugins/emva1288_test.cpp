@@ -1,0 +1,197 @@
+// The EMVA 1288 detector, the point_source target, the site atmosphere and the unsaturated criterion in chains:
+// every number against hand computation from the EMVA 1288 R4.0 equations, the magnitude definitions
+// (physics/magnitudes.hpp, tested on their own against published zero points) and, for Rubin/LSST, SMTN-002.
+#include "radchain/chain.hpp"
+#include "radchain/constants.hpp"
+#include "radchain/physics/emva1288.hpp"
+#include "radchain/physics/magnitudes.hpp"
+#include "radchain/spectrum_csv.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+namespace {
+using namespace radchain;
+
+const std::string spectra = std::string(RADCHAIN_SOURCE_DIR) + "/spectra/";
+const std::string sensors = std::string(RADCHAIN_SOURCE_DIR) + "/sensors/";
+
+// A small telescope with a Gaussian PSF and a datasheet camera; `detector` and `target` lines are appended.
+std::string write_sensor(const std::string& name, const std::string& target, const std::string& detector,
+                         const std::string& extra = "") {
+  const std::string text = R"([sensor]
+name = "test"
+[source]
+plugin = "sun"
+[atmosphere]
+plugin = "none"
+[target]
+plugin = "point_source"
+system = "vega"
+band = "johnson_cousins_V_bessell1990.csv"
+)" + target + R"(
+[optics]
+plugin = "telescope"
+aperture = "20 cm"
+transmittance = 0.8
+focal_length = "1 m"
+psf = "gaussian"
+gaussian_fwhm = "10 um"
+[detector]
+plugin = "emva1288"
+band_min = "0.4 um"
+band_max = "0.9 um"
+qe = 0.6
+gain = "0.5 DN/e-"
+saturation_capacity = "20000 e-"
+adc_bits = 16
+pixel_pitch = "5 um"
+)" + (detector.find("integration_time") == std::string::npos ? "integration_time = \"1 s\"\n" : "") + detector + R"(
+[criteria.detection]
+plugin = "snr_threshold"
+threshold = 5
+[criteria.unsaturated]
+plugin = "unsaturated"
+)" + extra;
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("radchain_emva1288_" + std::to_string(::getpid()) + "_" + name + ".toml");
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+Report run(const std::string& file) {
+  Chain chain = load_sensor(file);
+  Report r = chain.run();
+  std::filesystem::remove(file);
+  return r;
+}
+
+TEST(Emva1288Chain, BrightStarSaturatesAndTheCriterionSaysSo) {
+  const Report bright = run(write_sensor("bright", "magnitude = 4", "dark_noise = \"3 e-\""));
+  auto v = [&](const Report& r, const std::string& n) { return r.value(n).value(); };
+  // The brightest pixel: f_peak × image (Gaussian FWHM 10 µm on 5 µm pixels: FWHM 2 px, erf(1/(2√2σ))² = 0.19691).
+  EXPECT_NEAR(v(bright, "detector.peak_pixel_fraction"), radchain::physics::gaussian_peak_pixel_fraction(2.0), 1e-12);
+  EXPECT_NEAR(v(bright, "detector.peak_pixel_electrons"),
+              v(bright, "detector.peak_pixel_fraction") * v(bright, "detector.image_electrons"), 1e-6);
+  // Capacity: min(20000 e-, (2^16 − 1)/0.5 = 131070 e-).
+  EXPECT_DOUBLE_EQ(v(bright, "detector.saturation_capacity"), 20000.0);
+  EXPECT_GT(v(bright, "detector.peak_pixel_fill"), 1.0);
+  EXPECT_LT(v(bright, "criteria.unsaturated.margin"), 0.0);
+  EXPECT_EQ(v(bright, "criteria.unsaturated.saturated"), 1.0);
+  EXPECT_NEAR(v(bright, "criteria.unsaturated.margin"), 1.0 / v(bright, "detector.peak_pixel_fill") - 1.0, 1e-12);
+  // Fainter by 10 mag: 10^4 less light, unsaturated.
+  const Report faint = run(write_sensor("faint", "magnitude = 14", "dark_noise = \"3 e-\""));
+  EXPECT_NEAR(v(bright, "detector.image_electrons") / v(faint, "detector.image_electrons"), 1e4, 1e-6);
+  EXPECT_GT(v(faint, "criteria.unsaturated.margin"), 0.0);
+  EXPECT_EQ(v(faint, "criteria.unsaturated.saturated"), 0.0);
+}
+
+// Window photometry, one frame: n² = S + n_pix (σ_d0² + 1/(12K²) + μ_I t) + n_pix σ_DSNU² + s_g² S²/n_eff.
+TEST(Emva1288Chain, NoiseBudgetByHand) {
+  const Report r = run(write_sensor("budget", "magnitude = 12",
+                                    "dark_noise = \"3 e-\"\ndark_current = \"2 e-/s\"\ndsnu = \"1.5 e-\"\nprnu = 0.01\n"
+                                    "window_pixels = 3"));
+  auto v = [&](const std::string& n) { return r.value(n).value(); };
+  const double s = v("detector.signal_electrons"), neff = v("detector.noise_equivalent_area");
+  EXPECT_NEAR(s, v("detector.image_electrons") * std::pow(std::erf(3 * 5e-6 / (2 * std::sqrt(2.0) * 10e-6 / 2.354820045)), 2),
+              1e-6 * s);
+  const double per_pixel = 9 + 1 / (12 * 0.25) + 2 + 1.5 * 1.5;
+  const double expected = std::sqrt(s + 9 * per_pixel + 0.01 * 0.01 * s * s / neff);
+  EXPECT_NEAR(v("detector.noise_electrons"), expected, 1e-9 * expected);
+  EXPECT_NEAR(v("detector.snr"), s / expected, 1e-9);
+  EXPECT_NEAR(neff, radchain::physics::gaussian_noise_equivalent_area_px(2.0), 1e-12);
+}
+
+// TDI (issue 14 uses this): N stages multiply signal and dark, read noise counts once.
+TEST(Emva1288Chain, TdiStagesMultiplySignalAndDarkNotReadNoise) {
+  const std::string det = "dark_noise = \"20 e-\"\ndark_current = \"100 e-/s\"\nintegration_time = \"1 ms\"\n";
+  const Report one = run(write_sensor("tdi1", "magnitude = 14", det));
+  const Report many = run(write_sensor("tdi64", "magnitude = 14", det + "tdi_stages = 64"));
+  auto v = [](const Report& r, const std::string& n) { return r.value(n).value(); };
+  const double s1 = v(one, "detector.signal_electrons");
+  EXPECT_NEAR(v(many, "detector.signal_electrons") / s1, 64.0, 1e-9);
+  const double q = 1 / (12 * 0.25);
+  EXPECT_NEAR(v(many, "detector.noise_electrons"), std::sqrt(64 * s1 + 400 + q + 64 * 0.1), 1e-9);
+  EXPECT_NEAR(v(many, "detector.tdi_stages"), 64.0, 0);
+  // The peak pixel holds all 64 stages' charge.
+  EXPECT_NEAR(v(many, "detector.peak_pixel_electrons") / v(one, "detector.peak_pixel_electrons"), 64.0, 1e-9);
+}
+
+// M co-added frames: temporal variances add (× M), fixed patterns (DSNU, PRNU) add in amplitude (× M²).
+TEST(Emva1288Chain, CoaddedExposuresAndBinning) {
+  const std::string det = "dark_noise = \"5 e-\"\ndsnu = \"2 e-\"\n";
+  const Report one = run(write_sensor("m1", "magnitude = 15", det));
+  const Report four = run(write_sensor("m4", "magnitude = 15", det + "exposures = 4"));
+  auto v = [](const Report& r, const std::string& n) { return r.value(n).value(); };
+  const double s1 = v(one, "detector.signal_electrons"), q = 1 / (12 * 0.25);
+  EXPECT_NEAR(v(one, "detector.noise_electrons"), std::sqrt(s1 + 25 + q + 4), 1e-9);
+  EXPECT_NEAR(v(four, "detector.signal_electrons"), 4 * s1, 1e-9 * s1);
+  EXPECT_NEAR(v(four, "detector.noise_electrons"), std::sqrt(4 * (s1 + 25 + q) + 16 * 4), 1e-9);
+  // 2×2 binning, one binned pixel window: read and DSNU variances of 4 native pixels; EE over a 10 µm square.
+  const Report binned = run(write_sensor("b2", "magnitude = 15", det + "binning = 2"));
+  const double sb = v(binned, "detector.signal_electrons");
+  EXPECT_NEAR(sb / v(binned, "detector.image_electrons"), std::pow(std::erf(10.0 / (2 * std::sqrt(2.0) * 10.0 / 2.354820045)), 2), 1e-9);
+  EXPECT_NEAR(v(binned, "detector.noise_electrons"), std::sqrt(sb + 4 * (25 + q) + 4 * 4), 1e-9);
+}
+
+// The SED does not depend on the band that normalises it: a solar-spectrum star of V = 10 (Vega) has
+// G = 10 + (G − V) computed from the spectra, and given that G it delivers the same electrons.
+TEST(Emva1288Chain, SedIndependentOfTheNormalisingBand) {
+  const Spectrum sun = load_spectrum_csv(spectra + "am0_astm_e490_00a.csv", "W m-2 m-1").spectrum;
+  const Spectrum vega = load_spectrum_csv(spectra + "vega_alpha_lyr_stis_002.csv", "W m-2 m-1").spectrum;
+  const Spectrum v_band = load_spectrum_csv(spectra + "johnson_cousins_V_bessell1990.csv", "1").spectrum;
+  const Spectrum g_band = load_spectrum_csv(spectra + "gaia_dr3_G.csv", "1").spectrum;
+  using namespace radchain::physics;
+  const double v_minus_g = band_magnitude(band_photon_rate(sun, v_band), band_photon_rate(vega, v_band)) -
+                           band_magnitude(band_photon_rate(sun, g_band), band_photon_rate(vega, g_band));
+  const double g = 10.0 - v_minus_g;
+  const Report in_v = run(write_sensor("sed_v", "magnitude = 10", "dark_noise = \"3 e-\""));
+  std::string file = write_sensor("sed_g", "magnitude = " + std::to_string(g), "dark_noise = \"3 e-\"");
+  {  // the band line: G instead of V
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    s.replace(s.find("johnson_cousins_V_bessell1990.csv"), 33, "gaia_dr3_G.csv");
+    std::ofstream(file) << s;
+  }
+  const Report in_g = run(file);
+  EXPECT_NEAR(in_g.value("detector.image_electrons").value() / in_v.value("detector.image_electrons").value(), 1.0, 1e-5);
+  // The published zero point is Vega's photon rate through the band.
+  EXPECT_NEAR(in_v.value("target.zero_point_photon_rate").value() / band_photon_rate(vega, v_band), 1.0, 1e-12);
+  // A solar-type star is redder than Vega: V − G > 0 (Sun: G − V = −0.2 mag, Casagrande & VandenBerg 2018).
+  EXPECT_NEAR(v_minus_g, 0.2, 0.1);
+}
+
+// Rubin/LSST r (sensors/rubin-lsst-r-m5.toml) against SMTN-002 and an independent sky count.
+TEST(Emva1288Chain, RubinLsstRBandDepth) {
+  Chain chain = load_sensor(sensors + "rubin-lsst-r-m5.toml");
+  const Report r = chain.run();
+  ASSERT_TRUE(r.solves.at(0).converged);
+  auto v = [&](const std::string& n) { return r.value(n).value(); };
+  EXPECT_NEAR(r.solves.at(0).value_si, 24.52, 0.05);  // SMTN-002 m5 (r)
+  EXPECT_NEAR(v("detector.instrumental_zero_point"), 28.36, 0.03);
+  // n_eff: SMTN-002's 2.266 (0.83/0.2)² = 39.03 for a continuous Gaussian; on 10 µm pixels + 1/12 px² per axis.
+  EXPECT_NEAR(v("detector.noise_equivalent_area") / (2.266 * std::pow(0.83 / 0.2, 2)), 1.0, 0.03);
+  // Sky per pixel: t A Ω 10^{-0.4·21.2} ∫ f_ν,AB S_hw(λ)/(hλ) dλ, SMTN-002 "Sky Counts" (hardware only).
+  const Spectrum hw = load_spectrum_csv(spectra + "lsst_hardware_r_throughputs1.9.csv", "1").spectrum;
+  double rate = 0;  // ∫ f_ν/(hλ) S dλ by the trapezoid rule on the table's own grid
+  for (Eigen::Index i = 1; i < hw.size(); ++i) {
+    auto f = [&](Eigen::Index k) { return hw.value()(k) / hw.wavelength_m()(k); };
+    rate += 0.5 * (f(i) + f(i - 1)) * (hw.wavelength_m()(i) - hw.wavelength_m()(i - 1));
+  }
+  rate *= physics::ab_zero_f_nu_W_m2_Hz / constants::planck_J_s;
+  const double area = std::numbers::pi / 4 * 6.423 * 6.423;
+  const double sky = 30 * area * 0.2 * 0.2 * std::pow(10.0, -0.4 * 21.2) * rate;
+  EXPECT_NEAR(v("detector.sky_electrons_per_pixel") / sky, 1.0, 1e-3);
+}
+
+}  // namespace
