@@ -71,7 +71,8 @@ class Giqe final : public Stage {
     id_gsd_ = c.declare("gsd_geometric_mean", "m", "√(GSD_across · GSD_along) at the look, spherical Earth", "m");
     id_gsd_inch_ = c.declare("gsd_inches", "1", "GSD / 0.0254 m (the GIQE's unit)");
     id_rer_ = c.declare(vocabulary::criterion_rer, params_.has("rer") ? "input (measured)" : "ER(½) − ER(−½) of the system MTF");
-    id_overshoot_ = c.declare("overshoot", "1", "max ER on [1, 3] samples, or ER(1.25) if monotonic (GIQE-4's H)");
+    // The overshoot costs ~40 edge integrals: only GIQE-4 uses it.
+    if (giqe4_) id_overshoot_ = c.declare("overshoot", "1", "max ER on [1, 3] samples, or ER(1.25) if monotonic (GIQE-4's H)");
     id_snr_ = c.declare("snr", "1", params_.has("snr") ? "input" : "= detector.snr");
     id_niirs_ = c.declare(vocabulary::criterion_niirs,
                           giqe4_ ? "GIQE-4, Leachtenauer et al. 1997 eq. (2)" : "GIQE-5, NGA GIQE v5.0 (2015)");
@@ -109,7 +110,7 @@ class Giqe final : public Stage {
     const double cutoff_samples = p * physics::diffraction_cutoff_frequency_per_m(lambda, n);
     constexpr int panels = 1000;
     const double rer = params_.has("rer") ? *rer_ : physics::relative_edge_response(system, cutoff_samples, panels);
-    const double overshoot = physics::edge_overshoot(system, cutoff_samples, panels);
+    const double overshoot = giqe4_ ? physics::edge_overshoot(system, cutoff_samples, panels) : 0.0;
     const double snr = params_.has("snr") ? *snr_ : c.results.value(*detector_snr_);
     const double niirs = giqe4_ ? physics::giqe4_niirs(gsd, rer, overshoot, *noise_gain_, snr)
                                 : physics::giqe5_niirs(gsd, rer, snr);
@@ -117,7 +118,7 @@ class Giqe final : public Stage {
     c.results.set(id_gsd_, gsd);
     c.results.set(id_gsd_inch_, gsd / physics::metres_per_inch);
     c.results.set(id_rer_, rer);
-    c.results.set(id_overshoot_, overshoot);
+    if (id_overshoot_) c.results.set(*id_overshoot_, overshoot);
     c.results.set(id_snr_, snr);
     c.results.set(id_niirs_, niirs);
     c.results.set(id_required_, *required_);
@@ -137,7 +138,8 @@ class Giqe final : public Stage {
   bool giqe4_;
   ResultId altitude_{}, tilt_{}, focal_{}, f_number_{};
   std::optional<ResultId> roll_, pitch_angle_, radius_, obscuration_, detector_snr_, pitch_term_;
-  ResultId id_gsd_{}, id_gsd_inch_{}, id_rer_{}, id_overshoot_{}, id_snr_{}, id_niirs_{}, id_required_{}, id_margin_{},
+  std::optional<ResultId> id_overshoot_;
+  ResultId id_gsd_{}, id_gsd_inch_{}, id_rer_{}, id_snr_{}, id_niirs_{}, id_required_{}, id_margin_{},
       id_nyquist_{}, id_mtf_system_{}, id_mtf_diffraction_{}, id_mtf_pixel_{}, id_mtf_other_{}, id_q_{};
 };
 
