@@ -154,9 +154,9 @@ void check_standard_output() {
   errno = 0;
   const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout);
   if (failed) {
-    const int error = errno ? errno : EIO;
+    const int error = errno;  // 0 when the failed write was an earlier one (its errno is gone)
     std::clearerr(stdout);
-    throw WriteError("cannot write standard output: " + reason(error));
+    throw WriteError("cannot write standard output: " + (error ? reason(error) : std::string("a write failed (disk full?)")));
   }
 }
 

@@ -5,12 +5,16 @@
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
 #include <dlfcn.h>
+#include <elf.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <deque>
+#include <bit>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -22,6 +26,58 @@ namespace radchain {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The library's radchain_plugin_abi_version read from the file itself (its ELF dynamic symbol table), before
+// dlopen runs any of its static constructors (issue 18). Found: the number; the file is a well-formed ELF64 without
+// the symbol: 0 (not a plugin); anything else (another ELF class, a malformed or huge file): nullopt, and the
+// loader's own checks decide.
+std::optional<std::uint32_t> abi_in_file(const std::string& path) {
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (ec || size < sizeof(Elf64_Ehdr) || size > (std::uintmax_t{1} << 30)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  if (!in.read(bytes.data(), static_cast<std::streamsize>(size))) return std::nullopt;
+  auto fits = [&](std::uint64_t offset, std::uint64_t length) { return offset <= size && length <= size - offset; };
+  Elf64_Ehdr eh;
+  std::memcpy(&eh, bytes.data(), sizeof eh);
+  if (std::memcmp(eh.e_ident, ELFMAG, SELFMAG) != 0 || eh.e_ident[EI_CLASS] != ELFCLASS64 ||
+      eh.e_ident[EI_DATA] != (std::endian::native == std::endian::little ? ELFDATA2LSB : ELFDATA2MSB) ||
+      eh.e_shentsize != sizeof(Elf64_Shdr) || !fits(eh.e_shoff, std::uint64_t{eh.e_shnum} * sizeof(Elf64_Shdr)))
+    return std::nullopt;
+  auto section = [&](std::size_t i) {
+    Elf64_Shdr sh;
+    std::memcpy(&sh, bytes.data() + eh.e_shoff + i * sizeof(Elf64_Shdr), sizeof sh);
+    return sh;
+  };
+  for (std::size_t i = 0; i < eh.e_shnum; ++i) {
+    const Elf64_Shdr symbols = section(i);
+    if (symbols.sh_type != SHT_DYNSYM) continue;
+    if (symbols.sh_link >= eh.e_shnum || !fits(symbols.sh_offset, symbols.sh_size)) return std::nullopt;
+    const Elf64_Shdr names = section(symbols.sh_link);
+    if (!fits(names.sh_offset, names.sh_size)) return std::nullopt;
+    for (std::uint64_t at = 0; at + sizeof(Elf64_Sym) <= symbols.sh_size; at += sizeof(Elf64_Sym)) {
+      Elf64_Sym sym;
+      std::memcpy(&sym, bytes.data() + symbols.sh_offset + at, sizeof sym);
+      if (sym.st_name >= names.sh_size) continue;
+      const char* name = bytes.data() + names.sh_offset + sym.st_name;
+      const std::size_t room = static_cast<std::size_t>(names.sh_size - sym.st_name);
+      if (strnlen(name, room) == room || std::strcmp(name, "radchain_plugin_abi_version") != 0) continue;
+      if (sym.st_shndx == SHN_UNDEF || sym.st_shndx >= eh.e_shnum || sym.st_size != sizeof(std::uint32_t))
+        return std::nullopt;
+      const Elf64_Shdr data = section(sym.st_shndx);
+      if (data.sh_type == SHT_NOBITS) return 0u;
+      if (sym.st_value < data.sh_addr) return std::nullopt;
+      const std::uint64_t offset = data.sh_offset + (sym.st_value - data.sh_addr);
+      if (!fits(offset, sizeof(std::uint32_t))) return std::nullopt;
+      std::uint32_t abi = 0;
+      std::memcpy(&abi, bytes.data() + offset, sizeof abi);
+      return abi;
+    }
+    return 0u;  // a dynamic symbol table without the symbol
+  }
+  return std::nullopt;
+}
 std::string with_article(const std::string& noun) {
   return (noun.empty() || std::string("aeiou").find(noun.front()) == std::string::npos ? "a " : "an ") + noun;
 }
@@ -124,6 +180,14 @@ const PluginInfo& PluginHost::load_file_locked(const std::string& path) {
   if (auto it = impl_->by_path.find(path); it != impl_->by_path.end()) return *it->second;
   auto fail = [&](const std::string& problem) { return InputError(SourceLocation{path, 0, 0}, "plugin library", "", problem); };
 
+  // First from the file, so that a library of another ABI (or no plugin at all) never runs its constructors.
+  if (const auto abi = abi_in_file(path)) {
+    if (*abi == 0)
+      throw fail("not a radchain plugin: it exports no radchain_plugin_abi_version (declare it with RADCHAIN_PLUGIN)");
+    if (*abi != plugin_abi_version)
+      throw fail(fmt::format("built for plugin ABI {}, this radchain {} has ABI {}: rebuild the plugin against it", *abi,
+                             framework_version, plugin_abi_version));
+  }
   boost::dll::shared_library library;
   std::error_code ec;
   library.load(fs::path(path), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
