@@ -206,7 +206,8 @@ double wavefront_error_mtf(double frequency_per_m, double wavelength_m, double f
 }
 
 double tdi_synchronisation_mtf(double frequency_per_m, double stages, double mismatch_fraction, double pixel_pitch_m) {
-  if (!(stages >= 1)) throw std::invalid_argument("TDI: at least one stage, got " + std::to_string(stages));
+  // N is a count; a real N > 0 is accepted so that a sweep or solve may pass through it smoothly.
+  if (!(stages > 0)) throw std::invalid_argument("TDI: the number of stages must be positive, got " + std::to_string(stages));
   const double a = pi * mismatch_fraction * pixel_pitch_m * frequency_per_m;
   if (std::abs(std::sin(a)) < 1e-12) return 1.0;
   return std::abs(std::sin(stages * a) / (stages * std::sin(a)));
