@@ -38,6 +38,16 @@ const Shipped shipped[] = {
     {"johnson_V_stsci_cdbs_johnson_v_004.csv", "1"},
     {"si_absorption_green2008.csv", "m-1"},
     {"vega_alpha_lyr_stis_002.csv", "W m-2 m-1"},
+    {"johnson_cousins_B_bessell1990.csv", "1"},
+    {"johnson_cousins_V_bessell1990.csv", "1"},
+    {"johnson_cousins_R_bessell1990.csv", "1"},
+    {"johnson_cousins_I_bessell1990.csv", "1"},
+    {"gaia_dr3_G.csv", "1"},
+    {"sdss_g_doi2010.csv", "1"},
+    {"sdss_r_doi2010.csv", "1"},
+    {"sdss_i_doi2010.csv", "1"},
+    {"lsst_hardware_r_throughputs1.9.csv", "1"},
+    {"lsst_atmos_10_throughputs1.9.csv", "1"},
 };
 
 TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
