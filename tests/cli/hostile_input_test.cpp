@@ -152,3 +152,24 @@ TEST(HostileInput, AnOverLongKeyIsRefused) {
 }
 
 }  // namespace
+
+namespace {
+using namespace radchain::test;
+
+// A sensor file may name any readable file as a table: a device or a file of gigabytes is refused before reading.
+TEST(HostileInput, DataFilesThatAreNotTablesOrTooLargeAreRefused) {
+  Scratch scratch;
+  const std::string computed = source_dir + "/sensors/kolobrodov-1996-ccd151-computed.toml";
+  const CliResult device = run_cli(scratch, "run '" + computed + "' --set 'source.table=\"/dev/zero\"'");
+  EXPECT_EQ(device.exit_code, 2) << device.err;
+  EXPECT_EQ(count_lines(device.err), 1u) << device.err;  // only regular files are data files
+  const fs::path huge = scratch / "huge.csv";
+  { std::ofstream(huge).put('x'); }
+  fs::resize_file(huge, 100u << 20);  // sparse: no disk used
+  const CliResult big = run_cli(scratch, "run '" + computed + "' --set 'source.table=\"" + huge.string() + "\"'");
+  EXPECT_EQ(big.exit_code, 2) << big.err;
+  EXPECT_NE(big.err.find("more than a spectrum table may have (64 MiB)"), std::string::npos) << big.err;
+  EXPECT_EQ(count_lines(big.err), 1u) << big.err;
+}
+
+}  // namespace

@@ -3,8 +3,11 @@
 #include "radchain/error.hpp"
 #include "radchain/units.hpp"
 
+#include <fmt/format.h>
+
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -65,6 +68,19 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
     return InputError(SourceLocation{path, line, 0}, "spectrum file", "", problem);
   };
   if (!in) throw fail(0, "cannot be read (missing file or no permission)");
+  // Limits (issue 18): a sensor file may name any readable file; a spectrum is a few thousand rows, never a
+  // device, a FIFO or gigabytes. Checked before reading, and per line (a file that grows while read).
+  constexpr std::uintmax_t max_bytes = 64u << 20;
+  constexpr int max_rows = 1000000;
+  constexpr std::size_t max_line = 4096;
+  {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (!ec && !std::filesystem::is_regular_file(status)) throw fail(0, "is not a regular file");
+    const auto size = std::filesystem::file_size(path, ec);
+    if (!ec && size > max_bytes)
+      throw fail(0, fmt::format("{} bytes: more than a spectrum table may have ({} MiB)", size, max_bytes >> 20));
+  }
 
   SpectrumFile out;
   std::string line;
@@ -74,6 +90,8 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
   std::vector<double> wavelengths, values;
   while (std::getline(in, line)) {
     ++line_number;
+    if (line_number > max_rows) throw fail(line_number, fmt::format("more than {} lines", max_rows));
+    if (line.size() > max_line) throw fail(line_number, fmt::format("a line of {} characters: at most {}", line.size(), max_line));
     const std::string text = trim(line);
     if (text.empty()) throw fail(line_number, "blank line (the format has none)");
     if (text.front() == '#') {
