@@ -70,6 +70,7 @@ class CcdFrame final : public LaneStage<CcdFrame> {
     const Radiation& signal = c.light.signal;
     if (signal.form != RadiationForm::focal_power) c.refuse_form("a point image's power (a point target)", signal.form);
     const double lo = params_.get("band_min"), hi = params_.get("band_max");
+    band_min_ = lo, band_max_ = hi;
     // Spectral phase: photons per second per unit signal scale, QE curve included (Pan eqs. 6-7).
     photon_rate_per_scale_ = physics::photon_rate(signal.spectrum, lo, hi,
                                                   params_.has("qe_curve") ? &params_.spectrum("qe_curve") : nullptr);
@@ -113,6 +114,14 @@ class CcdFrame final : public LaneStage<CcdFrame> {
     id_noise_ = c.declare(vocabulary::detector_noise_electrons, "Pan 2010 eq. (9) + sky: √(N_d + n²σ_o² + n² n_q² + B + S)", "e-");
     id_snr_ = c.declare(vocabulary::detector_snr, "Pan 2010 eq. (10): S / n");
     id_time_ = c.declare(vocabulary::detector_integration_time, "input t", "s");
+    // What render and validate read (their frames use the detector's own well, ADC and noise).
+    id_well_ = c.declare(vocabulary::detector_saturation_capacity, "input n_well", "e-");
+    id_bits_ = c.declare(vocabulary::detector_adc_bits, "input N");
+    id_dark_rate_ = c.declare(vocabulary::detector_dark_rate, "input dark current", "e-/s");
+    id_read_pixel_ = c.declare(vocabulary::detector_read_noise_per_pixel, "input σ_o", "e-");
+    id_band_min_ = c.declare(vocabulary::detector_band_min, "input λ1", "um");
+    id_band_max_ = c.declare(vocabulary::detector_band_max, "input λ2", "um");
+    if (pitch_entry_.present) id_pitch_ = c.declare(vocabulary::detector_pixel_pitch, "input pitch", "um");
     if (pitch_entry_.present && focal_length_) {
       id_pixel_angle_ = c.declare("pixel_solid_angle", "sr", "Ω_pixel = (pitch/f')²", "arcsec2");
       id_sky_pixel_ = c.declare(vocabulary::detector_sky_electrons_per_pixel, "S(m_sky) Ω_pixel/arcsec²: one pixel's sky electrons per frame", "e-");
@@ -182,6 +191,13 @@ class CcdFrame final : public LaneStage<CcdFrame> {
     a.set(id_background_, background);
     a.set(id_background_noise_, sqrt(background));
     a.set(id_shot_noise_, sqrt(signal));
+    a.set(id_well_, well);
+    a.set(id_bits_, a.param(bits_));
+    a.set(id_dark_rate_, a.param(dark_));
+    a.set(id_read_pixel_, read);
+    a.set(id_band_min_, broadcast<V>(band_min_));
+    a.set(id_band_max_, broadcast<V>(band_max_));
+    if (id_pitch_) a.set(*id_pitch_, a.param(pitch_));
   }
 
   // EE as given; else from the optics' PSF (cached: it changes only with the window, pitch, λ, N, ε or FWHM);
@@ -216,12 +232,13 @@ class CcdFrame final : public LaneStage<CcdFrame> {
   const double *qe_, *time_, *well_, *bits_, *dark_, *read_, *pitch_, *window_, *ensquared_, *sky_;
   const Params::Entry &pitch_entry_, &ensquared_entry_, &sky_entry_;
   bool paper_quantisation_;
-  double photon_rate_per_scale_ = 0;
+  double photon_rate_per_scale_ = 0, band_min_ = 0, band_max_ = 0;
   double cache_[4] = {-1, -1, -1, -1}, cached_ensquared_ = 1;
   std::optional<ResultId> psf_wavelength_, gaussian_fwhm_, f_number_, obscuration_, focal_length_, area_,
-      optics_transmittance_, sun_magnitude_, id_pixel_angle_, id_sky_pixel_;
+      optics_transmittance_, sun_magnitude_, id_pixel_angle_, id_sky_pixel_, id_pitch_;
   ResultId id_signal_{}, id_image_{}, id_ensquared_{}, id_pixels_{}, id_dark_{}, id_dark_noise_{}, id_read_noise_{},
-      id_quant_noise_{}, id_background_{}, id_background_noise_{}, id_shot_noise_{}, id_noise_{}, id_snr_{}, id_time_{};
+      id_quant_noise_{}, id_background_{}, id_background_noise_{}, id_shot_noise_{}, id_noise_{}, id_snr_{}, id_time_{},
+      id_well_{}, id_bits_{}, id_dark_rate_{}, id_read_pixel_{}, id_band_min_{}, id_band_max_{};
 };
 
 }  // namespace
@@ -233,7 +250,10 @@ RADCHAIN_PLUGIN(CcdFrame, {
     .publishes = {vocabulary::detector_signal_electrons, vocabulary::detector_image_electrons,
                   vocabulary::detector_ensquared_energy, vocabulary::detector_window_pixel_count,
                   vocabulary::detector_noise_electrons, vocabulary::detector_snr,
-                  vocabulary::detector_integration_time, vocabulary::detector_sky_electrons_per_pixel},
+                  vocabulary::detector_integration_time, vocabulary::detector_sky_electrons_per_pixel,
+                  vocabulary::detector_saturation_capacity, vocabulary::detector_adc_bits, vocabulary::detector_dark_rate,
+                  vocabulary::detector_read_noise_per_pixel, vocabulary::detector_band_min, vocabulary::detector_band_max,
+                  vocabulary::detector_pixel_pitch},
     .needs = {if_present(vocabulary::optics_psf_wavelength), if_present(vocabulary::optics_gaussian_fwhm),
               if_present(vocabulary::optics_f_number), if_present(vocabulary::optics_obscuration),
               if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_collecting_area),

@@ -106,6 +106,11 @@ class CcdLine final : public Stage {
     id_signal_ = c.declare(vocabulary::detector_signal_irradiance, "eq. (21)/(6): E' = ∫_band E'_λ dλ of the contrast ΔM", "W/cm2");
     id_snr_ = c.declare(vocabulary::detector_snr, "E' / E_n (signal exposure over noise-equivalent exposure)");
     id_line_ = c.declare(vocabulary::detector_line_length, "l_D = pitch × N (eq. 17 text)", "mm");
+    id_pitch_ = c.declare(vocabulary::detector_pixel_pitch, "input pitch", "um");
+    id_band_min_ = c.declare(vocabulary::detector_band_min, "input λ1", "um");
+    id_band_max_ = c.declare(vocabulary::detector_band_max, "input λ2", "um");
+    if (params_.has("saturation_exposure"))
+      id_saturation_exposure_ = c.declare(vocabulary::detector_saturation_exposure, "input H_m (reference lamp)", "J/cm2");
     id_element_ = c.declare(vocabulary::detector_element_size_for_mtf, "input V_D (eq. 8)", "um");
     id_nu_half_ = c.declare(vocabulary::detector_nu_half_contrast, std::string("eq. (11): ν_x1 = u/V_D, u = ") + (paper_root ? "0.6 (paper)" : "0.603355 (exact)"),
                             "mm-1");
@@ -136,6 +141,10 @@ class CcdLine final : public Stage {
     c.results.set(id_signal_, signal);
     c.results.set(id_snr_, signal / threshold);
     c.results.set(id_line_, physics::detector_line_length_m(*pitch_, *count_));
+    c.results.set(id_pitch_, *pitch_);
+    c.results.set(id_band_min_, params_.get("band_min"));
+    c.results.set(id_band_max_, params_.get("band_max"));
+    if (id_saturation_exposure_) c.results.set(*id_saturation_exposure_, *saturation_);
     c.results.set(id_element_, *element_);
     c.results.set(id_nu_half_, sinc_root_ / *element_);
     c.results.set(id_nyquist_, 0.5 / *pitch_);
@@ -158,8 +167,8 @@ class CcdLine final : public Stage {
   bool time_pinned_ = false;
   ResultId id_time_{}, id_k_ref_{}, id_k_work_{}, id_ratio_{}, id_nee_{}, id_nee_working_{}, id_threshold_{},
       id_signal_{}, id_snr_{}, id_line_{}, id_element_{}, id_nu_half_{}, id_nyquist_{}, id_mtf_nyquist_{}, id_element_ratio_{},
-      id_system_element_{};
-  std::optional<ResultId> id_k_ref_computed_, id_k_work_computed_, id_saturation_, id_dynamic_range_;
+      id_system_element_{}, id_pitch_{}, id_band_min_{}, id_band_max_{};
+  std::optional<ResultId> id_k_ref_computed_, id_k_work_computed_, id_saturation_, id_dynamic_range_, id_saturation_exposure_;
 };
 
 }  // namespace
@@ -171,5 +180,6 @@ RADCHAIN_PLUGIN(CcdLine, {
     .publishes = {vocabulary::detector_integration_time, vocabulary::detector_utilisation_ratio,
                   vocabulary::detector_nee_working, vocabulary::detector_signal_irradiance, vocabulary::detector_snr,
                   vocabulary::detector_line_length, vocabulary::detector_element_size_for_mtf,
-                  vocabulary::detector_nu_half_contrast, vocabulary::detector_system_element},
+                  vocabulary::detector_nu_half_contrast, vocabulary::detector_system_element, vocabulary::detector_pixel_pitch,
+                  vocabulary::detector_band_min, vocabulary::detector_band_max, vocabulary::detector_saturation_exposure},
 })

@@ -38,6 +38,7 @@ class LambertianGround final : public Stage {
     c.light.background = Radiation{RadiationForm::scene_radiance, background, 1.0};
     id_delta_rho_ = c.declare(vocabulary::target_reflectance_difference, "Δρ, absolute (Kolobrodov 1996 eq. 4)");
     id_relative_ = c.declare("relative_contrast", "1", "Δρ/ρ_b (Kolobrodov 1996 eq. 1)");
+    id_albedo_ = c.declare(vocabulary::target_background_reflectance, "input ρ_b");
     if (c.light.has_report_band()) {
       ground_irradiance_per_scale_ =
           c.light.illumination.integral(c.light.report_band_min_m, c.light.report_band_max_m);
@@ -52,6 +53,7 @@ class LambertianGround final : public Stage {
     c.light.background.scale = c.light.illumination_scale * c.light.up_path_scale * *albedo_;
     c.results.set(id_delta_rho_, delta_rho);
     c.results.set(id_relative_, delta_rho / *albedo_);
+    c.results.set(id_albedo_, *albedo_);
     if (id_exitance_) {
       // Exitances at the ground (before the up path): M = E_0 ρ.
       const double e0 = ground_irradiance_per_scale_ * c.light.illumination_scale;
@@ -65,7 +67,7 @@ class LambertianGround final : public Stage {
   const double *albedo_, *contrast_;
   bool relative_;
   double ground_irradiance_per_scale_ = 0;
-  ResultId id_delta_rho_{}, id_relative_{};
+  ResultId id_delta_rho_{}, id_relative_{}, id_albedo_{};
   std::optional<ResultId> id_exitance_, id_threshold_;
 };
 
@@ -75,5 +77,6 @@ RADCHAIN_PLUGIN(LambertianGround, {
     .summary = "Lambertian ground of albedo ρ_b with an object of reflectance difference Δρ",
     .reference = "Kolobrodov 1996 eqs. (1)-(4)",
     .schema = schema,
-    .publishes = {vocabulary::target_reflectance_difference, vocabulary::target_background_exitance},
+    .publishes = {vocabulary::target_reflectance_difference, vocabulary::target_background_exitance,
+                  vocabulary::target_background_reflectance},
 })

@@ -2,6 +2,7 @@
 
 #include "radchain/error.hpp"
 #include "radchain/units.hpp"
+#include "radchain/vocabulary.hpp"
 
 namespace radchain::cli {
 
@@ -38,7 +39,9 @@ void apply_frame_geometry(render::SpaceFrameOptions& o, const FrameGeometry& g) 
 }
 
 bool is_point_target_sensor(Chain& chain) {
-  if (!chain.results().find("detector.signal_electrons") || !chain.results().find("detector.noise_electrons")) return false;
+  if (!chain.results().find(vocabulary::detector_signal_electrons.name) ||
+      !chain.results().find(vocabulary::detector_noise_electrons.name))
+    return false;
   try {
     chain.parameter("target.magnitude");
     return true;

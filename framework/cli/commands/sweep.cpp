@@ -7,6 +7,7 @@
 #include "radchain/error.hpp"
 #include "radchain/batch/sweep.hpp"
 #include "radchain/batch/thread_pool.hpp"
+#include "radchain/vocabulary.hpp"
 
 #include <fmt/format.h>
 
@@ -59,7 +60,8 @@ int sweep(const SweepCommand& command) {
     } else {
       for (const auto& s : chain.solves)
         if (index_of(s.unknown) < names.size()) plotted.push_back(index_of(s.unknown));
-      if (plotted.empty() && index_of("detector.snr") < names.size()) plotted.push_back(index_of("detector.snr"));
+      const std::string snr(vocabulary::detector_snr.name);
+      if (plotted.empty() && index_of(snr) < names.size()) plotted.push_back(index_of(snr));
       if (plotted.empty() && !names.empty()) plotted.push_back(0);
     }
   }

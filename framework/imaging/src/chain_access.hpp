@@ -43,14 +43,4 @@ inline std::optional<std::pair<std::string, double>> criterion_result(const Repo
 // Whether the chain has declared the term (a result is declared when the chain is built, set when evaluated).
 inline bool publishes(const Chain& chain, const Term& term) { return chain.results().find(term.name).has_value(); }
 
-inline std::optional<double> parameter(Chain& chain, const std::string& section, const std::string& key) {
-  StageSlot* slot = find_slot(chain, section);
-  if (!slot || !slot->params) return std::nullopt;
-  try {
-    return slot->params->maybe(key);
-  } catch (const std::exception&) {
-    return std::nullopt;  // not a key of this plugin
-  }
-}
-
 }  // namespace radchain::render::detail

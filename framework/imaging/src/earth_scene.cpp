@@ -87,7 +87,7 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   s.aperture_m = need(vocabulary::optics_aperture);
   s.obscuration = result(report, vocabulary::optics_obscuration).value_or(0.0);
   s.element_m = need(vocabulary::detector_element_size_for_mtf);
-  s.pitch_m = detail::parameter(chain, "detector", "pixel_pitch").value_or(s.element_m);
+  s.pitch_m = result(report, vocabulary::detector_pixel_pitch).value_or(s.element_m);
   s.reflectance_difference = need(vocabulary::target_reflectance_difference);
   s.irradiance_per_reflectance_W_m2 = need(vocabulary::detector_signal_irradiance) / s.reflectance_difference;
   s.integration_time_s = need(vocabulary::detector_integration_time);
@@ -101,7 +101,7 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   else if (quality && result(report, vocabulary::criterion_wavelength, quality->first))
     s.wavelength_m = *result(report, vocabulary::criterion_wavelength, quality->first);
   else {
-    const auto lo = detail::parameter(chain, "detector", "band_min"), hi = detail::parameter(chain, "detector", "band_max");
+    const auto lo = result(report, vocabulary::detector_band_min), hi = result(report, vocabulary::detector_band_max);
     if (!lo || !hi) refuse(file, "wavelength", "give the MTF wavelength as an option (the sensor has no mtf_match criterion or band)");
     s.wavelength_m = 0.5 * (*lo + *hi);
   }
@@ -110,9 +110,9 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   if (!(s.wavelength_m > 0)) refuse(file, "wavelength", "must be > 0");
 
   if (o.saturation_exposure_J_m2) s.saturation_J_m2 = *o.saturation_exposure_J_m2;
-  else if (auto h = detail::parameter(chain, "detector", "saturation_exposure"))
+  else if (auto h = result(report, vocabulary::detector_saturation_exposure))
     s.saturation_J_m2 = *h * result(report, vocabulary::detector_utilisation_ratio).value_or(1.0);  // H_m k_i/k_c, as H_nr
-  if (auto rho = detail::parameter(chain, "target", "albedo")) s.background_reflectance = *rho;
+  if (auto rho = result(report, vocabulary::target_background_reflectance)) s.background_reflectance = *rho;
   else if (auto m = result(report, vocabulary::target_background_exitance), e = result(report, vocabulary::atmosphere_ground_irradiance); m && e && *e > 0)
     s.background_reflectance = *m / *e;
 

@@ -111,14 +111,17 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
                                  "this sensor has " + (det ? "\"" + det->plugin + "\"" : "none") +
                                  " (a pushbroom sensor renders an Earth scene instead)");
   }
-  auto detector = [&](const std::string& key) { return detail::parameter(chain, "detector", key); };
-  const auto time = detector("integration_time"), well = detector("full_well"), bits = detector("adc_bits");
-  if (!time || !well || !bits) refuse(file, "detector", "a frame needs integration_time, full_well and adc_bits");
+  const auto time = result(report, vocabulary::detector_integration_time);
+  const auto well = result(report, vocabulary::detector_saturation_capacity);
+  const auto bits = result(report, vocabulary::detector_adc_bits);
+  if (!time || !well || !bits)
+    refuse(file, "detector", "a frame needs a detector publishing detector.integration_time, detector.saturation_capacity and "
+                             "detector.adc_bits (radchain describe <detector>)");
   s.integration_time_s = *time;
   s.full_well_electrons = *well;
   s.adc_bits = static_cast<int>(*bits);
-  s.dark_electrons = detector("dark_rate").value_or(0.0) * s.integration_time_s;
-  s.read_noise_electrons = detector("read_noise").value_or(0.0);
+  s.dark_electrons = result(report, vocabulary::detector_dark_rate).value_or(0.0) * s.integration_time_s;
+  s.read_noise_electrons = result(report, vocabulary::detector_read_noise_per_pixel).value_or(0.0);
   s.noise = o.noise;
   s.flat_field_electrons = o.flat_field_electrons;
   if (!(o.flat_field_electrons >= 0)) refuse(file, "flat field", "must be ≥ 0 electrons");
@@ -127,7 +130,7 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
   s.aperture_m = result(report, vocabulary::optics_aperture).value_or(0.0);
   s.obscuration = o.obscuration ? *o.obscuration : result(report, vocabulary::optics_obscuration).value_or(0.0);
   s.focal_length_m = o.focal_length_m ? *o.focal_length_m : result(report, vocabulary::optics_focal_length).value_or(0.0);
-  s.pixel_pitch_m = o.pixel_pitch_m ? *o.pixel_pitch_m : detector("pixel_pitch").value_or(0.0);
+  s.pixel_pitch_m = o.pixel_pitch_m ? *o.pixel_pitch_m : result(report, vocabulary::detector_pixel_pitch).value_or(0.0);
   s.f_number = s.focal_length_m > 0 && s.aperture_m > 0 ? s.focal_length_m / s.aperture_m : 0.0;
   const auto chain_wavelength = result(report, vocabulary::optics_psf_wavelength);
   const auto chain_fwhm = result(report, vocabulary::optics_gaussian_fwhm);

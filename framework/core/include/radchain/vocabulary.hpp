@@ -94,6 +94,19 @@ inline constexpr Term detector_nu_half_contrast{"detector.nu_half_contrast", "m-
 inline constexpr Term detector_system_element{"detector.system_element", "m", "system resolution element V_s in the focal plane"};
 inline constexpr Term detector_line_length{"detector.line_length", "m", "length of the detector line l_D"};
 
+// What render and validate read of a detector and a ground target (issue 12: any detector that publishes these
+// renders; saturation capacity and pixel pitch are terms of their own, below)
+inline constexpr Term detector_adc_bits{"detector.adc_bits", "1", "ADC resolution N (bits)"};
+inline constexpr Term detector_dark_rate{"detector.dark_rate", "electron s-1", "dark current of one pixel"};
+inline constexpr Term detector_read_noise_per_pixel{"detector.read_noise_per_pixel", "electron",
+                                                    "read noise of one pixel (rms)"};
+inline constexpr Term detector_band_min{"detector.band_min", "m", "lower limit λ1 of the detector band"};
+inline constexpr Term detector_band_max{"detector.band_max", "m", "upper limit λ2 of the detector band"};
+inline constexpr Term detector_saturation_exposure{"detector.saturation_exposure", "J m-2",
+                                                   "saturation exposure H_m of a line detector (reference lamp)"};
+inline constexpr Term target_background_reflectance{"target.background_reflectance", "1",
+                                                    "reflectance ρ_b of the background around a ground target"};
+
 // Datasheet detectors and telescopes (issue 13)
 inline constexpr Term detector_peak_pixel_fill{"detector.peak_pixel_fill", "1",
                                                "brightest pixel's charge / saturation capacity (> 1: saturated)"};
@@ -153,6 +166,9 @@ inline constexpr std::array all{
     detector_signal_irradiance, detector_nee_working, detector_utilisation_ratio, detector_element_size_for_mtf,
     detector_nu_half_contrast, detector_system_element, detector_line_length, criterion_margin, criterion_threshold,
     criterion_required_quality, criterion_wavelength, criterion_ground_element,
+    // What render and validate read (issue 12)
+    detector_adc_bits, detector_dark_rate, detector_read_noise_per_pixel, detector_band_min, detector_band_max,
+    detector_saturation_exposure, target_background_reflectance,
     // Earth-observation geometry (issue 14)
     platform_roll, platform_pitch, platform_slant_range, platform_view_zenith_angle, platform_earth_radius,
     detector_pixel_pitch, criterion_gsd_nadir, criterion_gsd_across_track, criterion_gsd_along_track,
