@@ -48,6 +48,9 @@ const Shipped shipped[] = {
     {"sdss_i_doi2010.csv", "1"},
     {"lsst_hardware_r_throughputs1.9.csv", "1"},
     {"lsst_atmos_10_throughputs1.9.csv", "1"},
+    {"lsst_hardware_g_throughputs1.9.csv", "1"},
+    {"lsst_hardware_i_throughputs1.9.csv", "1"},
+    {"lsst_atmos_10_300-1150nm_throughputs1.9.csv", "1"},
 };
 
 TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
