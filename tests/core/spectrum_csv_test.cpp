@@ -51,6 +51,9 @@ const Shipped shipped[] = {
     {"lsst_hardware_g_throughputs1.9.csv", "1"},
     {"lsst_hardware_i_throughputs1.9.csv", "1"},
     {"lsst_atmos_10_300-1150nm_throughputs1.9.csv", "1"},
+    {"lsst_hardware_u_throughputs1.9.csv", "1"},
+    {"lsst_hardware_z_throughputs1.9.csv", "1"},
+    {"lsst_hardware_y_throughputs1.9.csv", "1"},
 };
 
 TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
