@@ -47,40 +47,17 @@ void add_render_options(CLI::App* cmd, cli::RenderCommand& render) {
   cli::add_sensor(cmd, render.sensor);
   cmd->add_option("--out", render.out, "the data: FITS (sensor parameters in the header), or 32-bit float .tif/.exr");
   cmd->add_option("--png,--preview", render.preview, "display-stretched preview (.png or .tif)");
-  cmd->add_option("--fits-type", render.fits_type, "auto, float, int16 or int32");
-  cli::add_seed(cmd, render.seed);
-  cmd->add_option("--no-noise", render.no_noise, "switch terms off: shot,dark,read,saturation,adc or all")->delimiter(',');
-  cmd->add_option("--width", render.width, "frame width (pixels)");
-  cmd->add_option("--height", render.height, "frame height (pixels)");
-  cmd->add_option("--target", render.targets, "\"x,y,mag\", \"mag\" or \"limit\" (repeatable; default: one at the limit)");
-  cmd->add_option("--stars", render.stars, "number of synthetic field stars");
-  cmd->add_option("--star-magnitudes", render.star_magnitudes, "bright:faint (default 8:limit+1)");
-  cmd->add_option("--star-slope", render.star_slope, "d log10 N / dm of the star counts");
-  cmd->add_option("--star-seed", render.star_seed, "seed of the star field");
-  cli::add_frame_geometry(cmd, render.geometry);
-  cmd->add_option("--obscuration", render.obscuration, "central obscuration (linear ratio) of the Airy PSF");
-  cmd->add_option("--sky", render.sky, "sky background per pixel and frame, e.g. \"40 e-\"");
-  cmd->add_option("--oversampling", render.oversampling, "PSF phases per pixel");
-  cmd->add_option("--offset", render.offset_dn, "ADC pedestal (DN)");
   cmd->add_option("--scene", render.scene, "ground reflectance map (png, tif, exr; 0..1); default: the built-in test scene");
-  cmd->add_option("--scene-sampling", render.scene_sampling, "ground size of one map pixel, e.g. \"1.25 m\"");
-  cmd->add_option("--gsd", render.gsd, "output ground sampling (default: the design's ground element)");
-  cmd->add_option("--optics-mtf", render.optics_mtf, "diffraction, eq7 or none");
-  cmd->add_option("--wavelength", render.wavelength, "MTF wavelength (default: the mtf_match criterion's)");
-  cmd->add_flag("--no-detector-mtf", render.no_detector_mtf, "leave out the element MTF (eq. 8)");
-  cmd->add_option("--adc-bits", render.adc_bits, "ADC of an Earth scene (ccd_line has none of its own)");
-  cmd->add_option("--stretch", render.stretch, "preview stretch: asinh or linear");
-  cmd->add_option("--upscale", render.upscale, "preview upscale (nearest neighbour)");
+  cmd->add_option("--target", render.targets, "\"x,y,mag\", \"mag\" or \"limit\" (repeatable; default: one at the limit)");
+  cli::add_seed(cmd, render.seed);
+  cmd->add_option("--star-seed", render.star_seed, "seed of the star field");
+  cli::add_schema_options(cmd, cli::render_option_schema(), render.values);
 }
 
 void add_validate_options(CLI::App* cmd, cli::ValidateCommand& validate) {
   cli::add_sensor(cmd, validate.sensor);
-  cmd->add_option("--trials", validate.trials, "detection Monte-Carlo frames");
-  cmd->add_option("--size", validate.size, "flat-field size (pixels)");
   cli::add_seed(cmd, validate.seed);
-  cmd->add_option("--threshold", validate.threshold_sigma, "detector threshold in noise units");
-  cmd->add_option("--max-z", validate.max_z, "binomial standard errors allowed");
-  cli::add_frame_geometry(cmd, validate.geometry);
+  cli::add_schema_options(cmd, cli::validate_option_schema(), validate.values);
 }
 
 }  // namespace
@@ -105,6 +82,7 @@ int main(int argc, char** argv) {
   cli::add_sets(cat_cmd, catalogue.sets, "override a key in every file: section.key=value (repeatable)");
   cat_cmd->add_option("--results", catalogue.results, "more results to show per sensor (comma-separated)")->delimiter(',');
   cli::add_output(cat_cmd, catalogue.output, "text (default), csv or json");
+  cli::add_no_solve(cat_cmd, catalogue.no_solve);
   cli::add_batch(cat_cmd, catalogue.batch);
 
   cli::CompareCommand compare;
@@ -126,6 +104,7 @@ int main(int argc, char** argv) {
   sweep_cmd->add_option("--plot", sweep.plot, "draw a 1-D sweep to this PNG with gnuplot");
   cli::add_output(sweep_cmd, sweep.output, "csv (default), text or json");
   cli::add_batch(sweep_cmd, sweep.batch);
+  cli::add_no_solve(sweep_cmd, sweep.sensor.no_solve);
   sweep_cmd->add_flag("--allow-large", sweep.allow_large, "run a grid of more than 10^8 points (refused otherwise)");
 
   cli::MtfCommand mtf;
@@ -151,7 +130,7 @@ int main(int argc, char** argv) {
   std::string describe_name;
   auto* describe_cmd = app.add_subcommand(
       "describe", "a plugin's keys, units, defaults, ranges, results and a TOML example; a kind's plugins; a sensor-file table");
-  describe_cmd->add_option("what", describe_name, "plugin name, path to a plugin .so, kind (criterion, ...), or sensor, solve, expected")
+  describe_cmd->add_option("what", describe_name, "plugin name, path to a plugin .so, kind (criterion, ...), sensor, solve, expected, render or validate")
       ->required();
 
   try {

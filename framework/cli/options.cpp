@@ -33,12 +33,4 @@ void add_seed(CLI::App* command, std::uint64_t& seed) {
   command->add_option("--seed", seed, "noise seed (same seed, same image)");
 }
 
-void add_frame_geometry(CLI::App* command, FrameGeometry& geometry) {
-  command->add_option("--focal-length", geometry.focal_length, "when the sensor has none, e.g. \"45 cm\"");
-  command->add_option("--pixel-pitch", geometry.pixel_pitch, "when the sensor has none, e.g. \"27 um\"");
-  command->add_option("--psf", geometry.psf, "pixel, airy or gaussian");
-  command->add_option("--psf-wavelength", geometry.psf_wavelength, "Airy wavelength, e.g. \"0.6 um\"");
-  command->add_option("--psf-fwhm", geometry.psf_fwhm, "Gaussian FWHM, e.g. \"20 um\"");
-}
-
 }  // namespace radchain::cli

@@ -54,6 +54,32 @@ TEST(CliNoSolve, WithoutSetTheFileValueIsUsed) {
   EXPECT_EQ(result_si(j, "target.magnitude"), 15.5);  // the start value written in the file
 }
 
+// --no-solve in a sweep: the solved unknown becomes an axis, each point forward only, equal to `run --no-solve`.
+TEST(CliNoSolve, SweepsASolvedUnknownForwardOnly) {
+  Scratch scratch;
+  const CliResult refused = run_cli(scratch, "sweep '" + sbv_file + "' --set target.magnitude=14:16:3");
+  EXPECT_EQ(refused.exit_code, 2);  // without --no-solve the [[solve]] would overwrite the axis
+  const CliResult r = run_cli(scratch, "sweep '" + sbv_file + "' --no-solve --set target.magnitude=14:16:3 --results detector.snr");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(count_lines(r.out), 4u) << r.out;  // header + 3 points
+  const CliResult at14 = run_cli(scratch, "run '" + sbv_file + "' --no-solve --set target.magnitude=14 --format json");
+  const double snr14 = result_si(nlohmann::json::parse(at14.out), "detector.snr");
+  const std::string first = r.out.substr(r.out.find('\n') + 1, r.out.find('\n', r.out.find('\n') + 1) - r.out.find('\n') - 1);
+  EXPECT_EQ(first.substr(0, 3), "14,");
+  EXPECT_NEAR(std::stod(first.substr(3)), snr14, 1e-8 * snr14);
+}
+
+// --no-solve in a catalogue: the unknown stays at its start value and the [expected] check is judged on it.
+TEST(CliNoSolve, CatalogueEvaluatesEachFileForwardOnly) {
+  Scratch scratch;
+  const CliResult solved = run_cli(scratch, "catalogue '" + sbv_file + "' --format csv");
+  EXPECT_EQ(solved.exit_code, 0) << solved.err;
+  EXPECT_NE(solved.out.find("msx-sbv,target.magnitude,15.5565,15.55,"), std::string::npos) << solved.out;
+  const CliResult forward = run_cli(scratch, "catalogue '" + sbv_file + "' --no-solve --format csv");
+  EXPECT_EQ(forward.exit_code, 1) << forward.err;  // 15.5 is not the published 15.55 ± 0.05 limit
+  EXPECT_NE(forward.out.find("msx-sbv,target.magnitude,15.5,15.55,"), std::string::npos) << forward.out;
+}
+
 TEST(CliSolvedOverride, WarnsOnceOnStderrAndKeepsTheExitCode) {
   Scratch scratch;
   const CliResult r = run_cli(scratch, "run '" + sbv_file + "' --set target.magnitude=14");

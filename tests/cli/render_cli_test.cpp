@@ -1,39 +1,78 @@
-// `radchain render` / `validate` through the CLI: files written, exit codes (the rendering itself is tested in tests/render).
+// `radchain render` / `validate` through the CLI: files written, exit codes, and the options checked against their
+// schema (option_schema.hpp) with one located line each (the rendering itself is tested in tests/imaging).
+#include "cli_helpers.hpp"
+
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <filesystem>
 #include <string>
 
 namespace {
+using namespace radchain::test;
 
-int run_cli(const std::string& arguments) {
-  const int status = std::system((std::string(RADCHAIN_CLI) + " " + arguments + " >/dev/null 2>&1").c_str());
-  return WEXITSTATUS(status);
-}
+const std::string kolobrodov_file = source_dir + "/sensors/kolobrodov-1996-ccd151-computed.toml";
 
 TEST(RenderCli, SpaceFrameWritesFitsAndPreview) {
-  const auto dir = std::filesystem::temp_directory_path() / "radchain_render_cli";
-  std::filesystem::create_directories(dir);
-  const std::string fits = (dir / "sbv.fits").string(), png = (dir / "sbv.png").string();
-  EXPECT_EQ(run_cli("render " RADCHAIN_SOURCE_DIR "/sensors/msx-sbv.toml --focal-length \"45 cm\" --pixel-pitch \"27 um\""
-                    " --width 64 --height 64 --stars 5 --seed 3 --out " + fits + " --png " + png),
-            0);
-  EXPECT_GT(std::filesystem::file_size(fits), 2880u);  // at least one FITS block
-  EXPECT_TRUE(std::filesystem::exists(png));
-  std::filesystem::remove_all(dir);
+  Scratch scratch;
+  const std::string fits = (scratch / "sbv.fits").string(), png = (scratch / "sbv.png").string();
+  const CliResult r = run_cli(scratch, "render '" + sbv_file + "' --focal-length \"45 cm\" --pixel-pitch \"27 um\""
+                                       " --width 64 --height 64 --stars 5 --seed 3 --out " + fits + " --png " + png);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(fs::file_size(fits), 2880u);  // at least one FITS block
+  EXPECT_TRUE(fs::exists(png));
 }
 
 TEST(RenderCli, EarthSceneAsFloatTiffAndBadExtension) {
-  const auto tif = std::filesystem::temp_directory_path() / "radchain_render_cli_scene.tif";
-  EXPECT_EQ(run_cli("render " RADCHAIN_SOURCE_DIR "/sensors/kolobrodov-1996-ccd151-computed.toml --out " + tif.string()), 0);
-  EXPECT_GT(std::filesystem::file_size(tif), 10000u);  // a 256×256 float32 scene at the designed 5 m GSD (compressed)
-  std::filesystem::remove(tif);
-  EXPECT_EQ(run_cli("render " RADCHAIN_SOURCE_DIR "/sensors/kolobrodov-1996-ccd151-computed.toml --out /tmp/x.jpg"), 2);
+  Scratch scratch;
+  const std::string tif = (scratch / "scene.tif").string();
+  const CliResult r = run_cli(scratch, "render '" + kolobrodov_file + "' --out " + tif);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(fs::file_size(tif), 10000u);  // a 256×256 float32 scene at the designed 5 m GSD (compressed)
+  EXPECT_EQ(run_cli(scratch, "render '" + kolobrodov_file + "' --out " + (scratch / "x.jpg").string()).exit_code, 2);
 }
 
-TEST(RenderCli, BadQuantityIsBadInput) {
-  EXPECT_EQ(run_cli("render " RADCHAIN_SOURCE_DIR "/sensors/msx-sbv.toml --focal-length 45 --pixel-pitch \"27 um\""), 2);
+// Each bad option value: exit 2, nothing on stdout, exactly this one line on stderr.
+struct BadOption {
+  std::string arguments, message;
+};
+
+TEST(RenderCli, OptionValuesAreValidatedByTheirSchema) {
+  Scratch scratch;
+  const std::vector<BadOption> cases = {
+      {"render '" + sbv_file + "' --width 0", "radchain render: --width = 0: out of range: accepted in [1, 16384]"},
+      {"render '" + sbv_file + "' --height 100000", "radchain render: --height = 100000: out of range: accepted in [1, 16384]"},
+      {"render '" + sbv_file + "' --focal-length 45",
+       "radchain render: --focal-length = 45: a bare number has no unit: expected a length, e.g. \"45 cm\""},
+      {"render '" + sbv_file + "' --pixel-pitch '27 s'",
+       "radchain render: --pixel-pitch = \"27 s\": expected a length, e.g. \"27 um\""},
+      {"render '" + sbv_file + "' --psf airi",
+       "radchain render: --psf = \"airi\": expected one of pixel, airy, gaussian (did you mean \"airy\"?)"},
+      {"render '" + sbv_file + "' --no-noise shot,drak",
+       "radchain render: --no-noise = [\"shot\", \"drak\"]: expected one of shot, dark, read, saturation, adc, all (did you mean \"dark\"?)"},
+      {"render '" + sbv_file + "' --obscuration 1", "radchain render: --obscuration = 1: out of range: accepted in [0, 1)"},
+      {"render '" + sbv_file + "' --upscale 17", "radchain render: --upscale = 17: out of range: accepted in [1, 16]"},
+      {"render '" + kolobrodov_file + "' --optics-mtf eq8",
+       "radchain render: --optics-mtf = \"eq8\": expected one of diffraction, eq7, none (did you mean \"eq7\"?)"},
+      {"validate '" + sbv_file + "' --trials 10", "radchain validate: --trials = 10: out of range: accepted in [100, 1e+08]"},
+      {"validate '" + sbv_file + "' --max-z -1", "radchain validate: --max-z = -1: out of range: accepted > 0"},
+  };
+  for (const auto& c : cases) {
+    const CliResult r = run_cli(scratch, c.arguments);
+    EXPECT_EQ(r.exit_code, 2) << c.arguments;
+    EXPECT_EQ(r.out, "") << c.arguments;
+    EXPECT_EQ(r.err, c.message + "\n") << c.arguments;
+  }
+}
+
+TEST(RenderCli, DescribeListsTheOptionsOfRenderAndValidate) {
+  Scratch scratch;
+  const CliResult render = run_cli(scratch, "describe render");
+  ASSERT_EQ(render.exit_code, 0) << render.err;
+  EXPECT_NE(render.out.find("--focal-length     quantity [m]"), std::string::npos) << render.out;
+  EXPECT_NE(render.out.find("accepted: in [1, 16384]"), std::string::npos) << render.out;
+  const CliResult validate = run_cli(scratch, "describe validate");
+  ASSERT_EQ(validate.exit_code, 0) << validate.err;
+  EXPECT_NE(validate.out.find("--trials"), std::string::npos) << validate.out;
+  EXPECT_EQ(validate.out.find("--stretch"), std::string::npos) << validate.out;  // render's only
 }
 
 }  // namespace

@@ -170,8 +170,20 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
 
 // --- Sweep -------------------------------------------------------------------------------------------------
 
+namespace {
+
+// The sensor as every point starts from: fixed overrides applied, solves dropped with --no-solve.
+Chain load_swept_sensor(const SweepOptions& options) {
+  Chain chain = load_sensor(options.sensor_file, options.overrides);
+  if (options.no_solve) chain.solves.clear();
+  return chain;
+}
+
+}  // namespace
+
+
 Sweep::Sweep(SweepOptions options) : options_(std::move(options)) {
-  Chain chain = load_sensor(options_.sensor_file, options_.overrides);
+  Chain chain = load_swept_sensor(options_);
   for (const auto& [key, range] : options_.axes) {
     for (const auto& a : axes_)
       if (a.key == key)
@@ -220,6 +232,7 @@ std::string Sweep::job() const {
   for (const auto& o : options_.overrides) job += "set " + o.key + "=" + o.value + "\n";
   for (const auto& [key, range] : options_.axes) job += "axis " + key + "=" + range + "\n";
   for (const auto& r : results_) job += "result " + r + "\n";
+  if (options_.no_solve) job += "no-solve\n";
   return job;
 }
 
@@ -292,7 +305,7 @@ static std::string solve_failure(const std::vector<SweepAxis>& axes, const doubl
 }
 
 SweepWorker::SweepWorker(const Sweep& sweep)
-    : sweep_(sweep), chain_(load_sensor(sweep.options().sensor_file, sweep.options().overrides)) {
+    : sweep_(sweep), chain_(load_swept_sensor(sweep.options())) {
   for (const auto& a : sweep.axes()) axes_.push_back(chain_.parameter(a.key));
   for (const auto& s : chain_.solves) {
     const ParameterRef p = chain_.parameter(s.unknown);

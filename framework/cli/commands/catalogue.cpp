@@ -14,6 +14,7 @@ int catalogue(const CatalogueCommand& command) {
   CatalogueOptions options;
   options.overrides = parse_overrides(command.sets);
   options.extra_results = command.results;
+  options.no_solve = command.no_solve;
   options.shard = shard_of(command.batch);
   const TableFormat format = format_of(command.output, TableFormat::text);
   const std::vector<std::string> files = catalogue_files(command.inputs);

@@ -1,7 +1,9 @@
 // `radchain describe <plugin>`: a plugin's keys, units, defaults, ranges, the results it publishes and needs
 // (its contract with the other stages, radchain/vocabulary.hpp), and a TOML example.
 // `radchain describe <kind>` ("criterion", or its section "criteria"): the plugins of that kind, one line each.
+// `radchain describe sensor | solve | expected | render | validate`: a sensor file's own tables, an imaging command's options.
 #include "../commands.hpp"
+#include "../option_schema.hpp"
 
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
@@ -89,7 +91,8 @@ void print_description(const PluginInfo& info, const std::string& path) {
   }
 }
 
-// The sensor file's own tables: `radchain describe sensor | solve | expected` (radchain/sensor_file.hpp).
+// The sensor file's own tables, `radchain describe sensor | solve | expected` (radchain/sensor_file.hpp), and the
+// options of the imaging commands, `radchain describe render | validate` (option_schema.hpp).
 bool print_file_table(const std::string& name) {
   if (name == "sensor") {
     fmt::print("[sensor] — the instrument's identity (every key optional)\n\nkeys:\n");
@@ -104,6 +107,9 @@ bool print_file_table(const std::string& name) {
     print_keys(expected_entry_schema());
     fmt::print("\nexample:\n[expected]\n\"optics.focal_length\" = {{ value = \"832 mm\", tolerance = \"1 mm\", "
                "source = \"Kolobrodov 1996, p. 4\" }}   # value, follows, tolerance in the result's unit\n");
+  } else if (name == "render" || name == "validate") {
+    fmt::print("radchain {} — options with units, limits or fixed choices (validated like a sensor file's keys)\n\noptions:\n", name);
+    print_keys(name == "render" ? render_option_schema() : validate_option_schema());
   } else {
     return false;
   }
@@ -152,13 +158,13 @@ int describe(const std::string& name) {
   for (const auto& f : PluginHost::instance().discover()) names.push_back(f.name);
   std::vector<std::string> kind_names;
   for (const KindInfo& k : kinds) kind_names.emplace_back(k.name);
-  const std::vector<std::string> tables = {"sensor", "solve", "expected"};
+  const std::vector<std::string> tables = {"sensor", "solve", "expected", "render", "validate"};
   std::vector<std::string> candidates = names;
   candidates.insert(candidates.end(), kind_names.begin(), kind_names.end());
   candidates.insert(candidates.end(), tables.begin(), tables.end());
   const std::string near = nearest_match(name, candidates);
   throw InputError({}, "describe", name,
-                   fmt::format("unknown plugin, kind or table{}; plugins: {}; kinds: {}; tables: {}",
+                   fmt::format("unknown plugin, kind, table or command{}; plugins: {}; kinds: {}; tables and commands: {}",
                                near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(names), join(kind_names),
                                join(tables)));
 }

@@ -30,6 +30,7 @@ int sweep(const SweepCommand& command) {
     throw InputError(SourceLocation{"sweep", 0, 0}, "", "",
                      "no axis: give at least one --set <section>.<key>=from:to:steps, e.g. --set optics.aperture=\"15 cm:30 cm:16\"");
   options.results = command.results;
+  options.no_solve = command.sensor.no_solve;
   options.allow_large = command.allow_large;
   options.shard = shard_of(command.batch);
   const TableFormat format = format_of(command.output, TableFormat::csv);
@@ -45,7 +46,8 @@ int sweep(const SweepCommand& command) {
   Sweep sweep(options);
   // The file as swept (fixed overrides applied): its solves and its name, and a warning for a fixed --set on an
   // unknown that a [[solve]] overwrites at every point (Sweep refuses an axis on one).
-  const Chain chain = load_sensor(options.sensor_file, options.overrides);
+  Chain chain = load_sensor(options.sensor_file, options.overrides);
+  if (options.no_solve) chain.solves.clear();
   warn_about_solved_overrides(chain.solves, options.overrides, std::cerr);
 
   // The plotted series: --results, else the solved unknowns, else the SNR, else the first result.

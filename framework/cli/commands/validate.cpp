@@ -14,6 +14,9 @@ namespace radchain::cli {
 using namespace radchain::render;
 
 int validate_command(const ValidateCommand& c) {
+  const Params v = validated_options(validate_option_schema(), c.values, "radchain validate");
+  const double max_z = v.get("--max-z");
+  const int size = static_cast<int>(v.integer("--size"));
   Chain chain = load_sensor_of(c.sensor);
   const Report report = chain.run();
   bool ok = true;
@@ -23,11 +26,11 @@ int validate_command(const ValidateCommand& c) {
   };
   if (is_point_target_sensor(chain)) {
     SpaceFrameOptions frame;
-    apply_frame_geometry(frame, c.geometry);
+    apply_frame_geometry(frame, v);
     DetectionCheckOptions d;
-    d.trials = c.trials;
+    d.trials = v.integer("--trials");
     d.seed = c.seed;
-    d.threshold_sigma = c.threshold_sigma;
+    d.threshold_sigma = v.get("--threshold");
     const DetectionCheck check = check_detection(chain, report, frame, d);
     fmt::print("{}: detection at the limiting magnitude {:.4f} (S = {:.4g} e-, n = {:.4g} e-, σ₀ = {:.4g} e-, SNR = {:.4g}, "
                "window {}×{}, threshold γ = {:.4g} σ₀, at a level between two window sums {:.4g} σ₀)\n",
@@ -38,11 +41,11 @@ int validate_command(const ValidateCommand& c) {
                check.rendered_signal_electrons, check.signal_electrons);
     for (const auto& [name, rate] : {std::pair{"P_d ", check.detection}, std::pair{"P_fa", check.false_alarm}})
       fmt::print("  {} {} measured {:.6f} ({} of {}), Gaussian criterion {:.6f} (z = {:+.2f}), renderer's exact law {:.6f} (z = {:+.2f})\n",
-                 verdict(std::abs(rate.z_predicted()) <= c.max_z), name, rate.measured, rate.count, rate.trials, rate.predicted,
+                 verdict(std::abs(rate.z_predicted()) <= max_z), name, rate.measured, rate.count, rate.trials, rate.predicted,
                  rate.z_predicted(), rate.exact, rate.z_exact());
-    const FlatFieldCheck flat = check_space_flat_field(chain, report, frame, c.size, c.seed);
+    const FlatFieldCheck flat = check_space_flat_field(chain, report, frame, size, c.seed);
     fmt::print("  {} flat field: measured SNR {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.5g} vs {:.5g} e-\n",
-               verdict(flat.passed(c.max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
+               verdict(flat.passed(max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
                flat.measured_noise, flat.predicted_noise);
   } else {
     EarthSceneOptions scene;
@@ -50,9 +53,9 @@ int validate_command(const ValidateCommand& c) {
     fmt::print("{}: slanted edge at {:.2f}°: MTF at Nyquist measured {:.4f}, model {:.4f}; max deviation up to Nyquist {:.2f} %\n",
                c.sensor.sensor, edge.angle_deg, edge.mtf_at_nyquist_measured, edge.mtf_at_nyquist_model, 100 * edge.max_relative_error);
     fmt::print("  {} edge MTF within {:.0f} %\n", verdict(edge.passed()), 100 * edge.tolerance);
-    const FlatFieldCheck flat = check_earth_flat_field(chain, report, scene, c.size, c.seed);
+    const FlatFieldCheck flat = check_earth_flat_field(chain, report, scene, size, c.seed);
     fmt::print("  {} flat fields: measured SNR of Δρ {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.4g} vs {:.4g} J m-2\n",
-               verdict(flat.passed(c.max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
+               verdict(flat.passed(max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
                flat.measured_noise, flat.predicted_noise);
   }
   return ok ? 0 : 1;

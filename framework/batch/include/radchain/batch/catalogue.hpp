@@ -22,6 +22,7 @@ std::vector<std::string> catalogue_files(const std::vector<std::string>& inputs)
 struct CatalogueOptions {
   std::vector<Override> overrides;         // --set, applied to every file
   std::vector<std::string> extra_results;  // --results: more rows per file
+  bool no_solve = false;                   // --no-solve: every file forward only, its [[solve]] entries skipped
   ShardSpec shard;
   std::atomic<std::size_t>* progress = nullptr;  // counts finished files
 };
