@@ -16,6 +16,8 @@ packages=(
   libopenimageio-dev      # radchain render: FITS/PNG/TIFF output through OpenImageIO 2.4
   openimageio-tools       # iinfo/oiiotool, to inspect rendered frames and their FITS headers
   libfftw3-dev            # radchain render: PSFs and MTFs applied in the Fourier domain
+  python3-dev python3-pybind11 pybind11-dev   # `import radchain` (python/, docs/python.md), built for /usr/bin/python3
+  python3-numpy python3-pandas python3-pytest # its arrays and tables, and its tests
 )
 
 missing=()

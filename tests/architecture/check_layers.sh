@@ -5,6 +5,8 @@
 #   batch     includes no radchain/imaging header and no OpenImageIO / FFTW; its library loads neither;
 #   imaging   includes no radchain/batch header and no TBB; its library links neither (OpenImageIO loads TBB);
 #   plugins   include only core headers and link only radchain-core (and load no TBB / OpenImageIO / FFTW).
+#   python    (the module, python/) uses core and batch: no radchain/imaging header, no TBB / OpenImageIO / FFTW /
+#             CLI11 include, and the built module (when RADCHAIN_PYTHON) loads no imaging, OpenImageIO or FFTW.
 # Usage: check_layers.sh SOURCE_DIR BINARY_DIR. Prints one line per broken rule; exit 1 if any.
 set -uo pipefail
 src=$1 bin=$2
@@ -27,6 +29,8 @@ forbid_includes framework/imaging 'radchain/batch/' "imaging must not include ba
 forbid_includes framework/imaging 'tbb/|oneapi/' "imaging must not use TBB"
 forbid_includes plugins 'radchain/batch/|radchain/imaging/' "plugins use the core SDK only"
 forbid_includes plugins 'tbb/|oneapi/|OpenImageIO/|fftw3|CLI/' "plugins use the core SDK only"
+forbid_includes python 'radchain/imaging/' "the Python module uses core and batch, never imaging"
+forbid_includes python 'tbb/|oneapi/|OpenImageIO/|fftw3|CLI/' "the Python module uses core and batch only"
 
 # forbid_loads LIBRARY PATTERN WHAT: ldd of LIBRARY (everything it loads) shows nothing matching PATTERN.
 forbid_loads() {
@@ -41,6 +45,11 @@ forbid_loads "$bin/lib/libradchain-batch.so" 'libOpenImageIO|libfftw3' "batch li
 # OpenImageIO itself loads TBB, so for imaging the rule is on what it links directly (NEEDED entries).
 needed=$(readelf -d "$bin/lib/libradchain-imaging.so" 2>/dev/null | grep -E 'NEEDED.*(libtbb|libradchain-batch)' | sed 's/.*\[\(.*\)\]/\1/' | tr '\n' ' ')
 [ -z "$needed" ] || fail "lib/libradchain-imaging.so links ${needed% }: imaging links no TBB and no batch"
+
+for module in "$bin"/python/radchain/_radchain*.so; do
+  [ -f "$module" ] || continue  # built only with RADCHAIN_PYTHON (not under sanitizers)
+  forbid_loads "$module" 'libOpenImageIO|libfftw3|libradchain-imaging' "the Python module links core and batch only"
+done
 
 plugins=$(find "$bin/plugins" -name '*.so' | sort)
 [ -n "$plugins" ] || fail "no plugins under $bin/plugins"

@@ -125,8 +125,18 @@ void build_stage(Chain& chain, const std::string& section, const ConfigValue& ta
 
 }  // namespace
 
+// The sensor file as parsed (a file or text named `path`) -> Chain: what load_sensor and load_sensor_text share.
+static Chain build_sensor(ConfigValue root, const std::string& path, const std::vector<Override>& overrides);
+
 Chain load_sensor(const std::string& path, const std::vector<Override>& overrides) {
-  ConfigValue root = parse_toml_file(path);
+  return build_sensor(parse_toml_file(path), path, overrides);
+}
+
+Chain load_sensor_text(const std::string& text, const std::string& path, const std::vector<Override>& overrides) {
+  return build_sensor(parse_toml_text(text, path), path, overrides);
+}
+
+static Chain build_sensor(ConfigValue root, const std::string& path, const std::vector<Override>& overrides) {
   for (const auto& o : overrides) apply_override(root, o);
 
   for (const auto& [key, value] : root.members) {

@@ -4,11 +4,16 @@
 //   [sensor]    name, description, reference, notes
 //   [[solve]]   unknown, criterion (one name or a list), bracket (two values in the unknown's unit)
 //   [expected]  "<result>" = { value, follows, tolerance, rel_tolerance, source } in the result's unit
+#include "radchain/chain.hpp"
 #include "radchain/schema.hpp"
 
 #include <string>
 
 namespace radchain {
+
+// load_sensor() of a sensor file's text (Python's radchain.loads): `path` names it in messages and is where
+// relative data files are looked for first (beside it). Throws InputError.
+Chain load_sensor_text(const std::string& text, const std::string& path, const std::vector<Override>& overrides = {});
 
 const Schema& sensor_table_schema();
 // A [[solve]] entry. The bracket's unit is the unknown's: `unknown` is that parameter's spec (nullptr: a plain

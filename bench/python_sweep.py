@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""A 10^6-point sweep from Python (Session.sweep) against the same sweep from C++ (radchain_points_bench, the
+PointsEvaluator that Session.sweep calls), both on all cores: the median wall time of each and their ratio.
+The issue (16) asks for Python <= 1.5x C++. Numbers and the machine: docs/python.md.
+
+    /usr/bin/python3 bench/python_sweep.py --build /tmp/build [--points 1e6] [--repeat 7]
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+here = Path(__file__).resolve().parent
+parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+parser.add_argument("--build", required=True, help="the CMake build directory (holds python/ and radchain_points_bench)")
+parser.add_argument("--points", type=float, default=1e6)
+parser.add_argument("--repeat", type=int, default=7)
+parser.add_argument("--sensor", default=str(here.parent / "sensors" / "msx-sbv.toml"))
+args = parser.parse_args()
+build = Path(args.build).resolve()
+sys.path.insert(0, str(build / "python"))
+os.environ.setdefault("RADCHAIN_PLUGIN_PATH", str(build / "plugins"))
+
+import numpy as np  # noqa: E402
+import radchain  # noqa: E402
+
+points = int(args.points)
+apertures = np.linspace(0.15, 0.30, points)
+print(f"radchain {radchain.framework_version}, {radchain.threads()} threads, {points} points, "
+      f"median of {args.repeat} runs after a warm-up; sensor {args.sensor}")
+for mode, result in (("solve", "target.magnitude"), ("forward", "detector.snr")):
+    s = radchain.load(args.sensor)
+    solve = mode == "solve"
+    out = s.sweep({"optics.aperture": apertures}, results=[result], solve=solve)  # warm-up: worker chains built
+    runs = []
+    for _ in range(args.repeat):
+        start = time.perf_counter()
+        out = s.sweep({"optics.aperture": apertures}, results=[result], solve=solve)
+        runs.append(time.perf_counter() - start)
+    py = statistics.median(runs)
+    done = subprocess.run([str(build / "radchain_points_bench"), args.sensor, str(points), str(args.repeat), mode],
+                          capture_output=True, text=True, check=True)
+    cpp = json.loads(done.stdout)
+    assert cpp["checksum"] / (args.repeat + 1) == out[result][points // 2], "C++ and Python computed different values"
+    print(f"{mode:>8} ({result}): Python {py * 1e3:8.1f} ms   C++ {cpp['median_s'] * 1e3:8.1f} ms   "
+          f"ratio {py / cpp['median_s']:.3f}   (Python runs: {', '.join(f'{r * 1e3:.1f}' for r in runs)} ms)")

@@ -1,0 +1,63 @@
+#pragma once
+// A sensor evaluated at arbitrary points, on all cores: every point gives each listed parameter a value in SI (one
+// array per parameter, point i reads values[p][i]), and the chain is evaluated there, its [[solve]] entries re-run
+// unless no_solve. What Python's Session.sweep() calls (python/); `radchain sweep` (sweep.hpp) steps
+// from:to:steps ranges instead, and both evaluate a point the same way:
+//
+// Every worker thread owns a Chain built once by `make_chain` (so a chain may come from a file, from text, or
+// carry values set in SI). Points go eight at a time through the lanes (Chain::set_lanes, evaluate_lanes,
+// solve_lanes) when no parameter and no solved unknown is spectral and the file has at most one [[solve]]; else
+// one at a time (Chain::set, solve_all / evaluate). Before each point the solved unknowns go back to their values in
+// the chain as built, so a point's result does not depend on which points the thread ran before it: the output is
+// the same for any thread count.
+#include "radchain/chain.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace radchain {
+
+// The numeric parameter "<section>.<key>" of `chain`, or InputError located at `where` (e.g. "set optics.aperture")
+// naming the sections, or the section's numeric keys and the nearest one.
+ParameterRef numeric_parameter(Chain& chain, const std::string& key, const std::string& where);
+// InputError unless `value_si` is accepted by the parameter `key` of `chain` (its range; a whole number for an
+// integer parameter). `subject` names the value in the message ("optics.aperture[17] = 0.001").
+void check_parameter_value(Chain& chain, const std::string& key, double value_si, const std::string& where,
+                           const std::string& subject);
+
+struct PointsJob {
+  std::function<Chain()> make_chain;    // the sensor as every point starts from; called concurrently, once per thread
+  std::vector<std::string> parameters;  // numeric parameters given per point, e.g. "optics.aperture"
+  std::vector<std::string> results;     // result names; empty: every result
+  bool no_solve = false;                // forward only (a solved unknown may then be a parameter)
+};
+
+class PointsEvaluator {
+ public:
+  // Builds one chain to check the parameters and the result names. Throws InputError.
+  explicit PointsEvaluator(PointsJob job);
+  ~PointsEvaluator();
+  PointsEvaluator(const PointsEvaluator&) = delete;
+  PointsEvaluator& operator=(const PointsEvaluator&) = delete;
+
+  const std::vector<std::string>& results() const { return results_; }
+  const std::vector<std::string>& result_units() const { return units_; }  // SI units of the results
+  // InputError for the first value that a parameter does not accept ("optics.aperture[17] = -0.1: ...").
+  void check(const double* const* values, std::size_t count) const;
+  // Evaluates `count` points: values[p][i] is parameter p at point i (SI). Writes result r at point i (SI) to
+  // out[r * count + i] and ok[i] (0 where a solve failed: the solved unknown's column is NaN there). Returns the
+  // number of points whose solve failed; `failure` gets the first one's message. Values are not checked (check()).
+  std::size_t run(const double* const* values, std::size_t count, double* out, char* ok, std::string* failure = nullptr);
+
+ private:
+  class Worker;
+  PointsJob job_;
+  std::vector<std::string> results_, units_;
+  Chain checker_;  // the chain that check() validates against
+  std::vector<std::unique_ptr<Worker>> workers_;  // one per thread slot, kept between runs
+};
+
+}  // namespace radchain

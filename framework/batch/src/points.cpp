@@ -1,0 +1,255 @@
+// A sensor evaluated at arbitrary points (values in SI per point), on all cores: Python's Session.sweep().
+#include "radchain/batch/points.hpp"
+
+#include "radchain/batch/catalogue.hpp"
+#include "radchain/batch/thread_pool.hpp"
+#include "radchain/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+namespace radchain {
+namespace {
+
+bool is_numeric(ParamType type) {
+  return type == ParamType::quantity || type == ParamType::number || type == ParamType::integer;
+}
+
+const ParamSpec& spec_of(Chain& chain, const std::string& key) {
+  const auto dot = key.rfind('.');
+  return *chain.slot(key.substr(0, dot)).params->entry(key.substr(dot + 1)).spec;
+}
+
+}  // namespace
+
+ParameterRef numeric_parameter(Chain& chain, const std::string& key, const std::string& where) {
+  const SourceLocation location{where, 0, 0};
+  const auto dot = key.rfind('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 == key.size())
+    throw InputError(location, "", key, "expected <section>.<key>, e.g. optics.aperture");
+  const std::string section = key.substr(0, dot), name = key.substr(dot + 1);
+  const StageSlot* slot = nullptr;
+  std::vector<std::string> sections;
+  for (const auto& s : chain.stages) {
+    sections.push_back(s.section);
+    if (s.section == section) slot = &s;
+  }
+  if (!slot) {
+    const std::string near = nearest_match(section, sections);
+    throw InputError(location, "", key,
+                     fmt::format("the sensor file has no section \"{}\"{}; sections: {}", section,
+                                 near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(sections)));
+  }
+  const Params::Entry* entry = nullptr;
+  std::vector<std::string> numeric_keys;
+  for (const auto& e : slot->params->entries()) {
+    if (is_numeric(e.spec->type)) numeric_keys.push_back(e.spec->key);
+    if (e.spec->key == name) entry = &e;
+  }
+  if (entry && !is_numeric(entry->spec->type))
+    throw InputError(location, "", key,
+                     fmt::format("not a number ({}): set it as TOML text, e.g. set(\"{}\", \"...\")",
+                                 entry->spec->expected_text().substr(std::string("expected ").size()), key));
+  if (!entry) {
+    const std::string near = nearest_match(name, numeric_keys);
+    throw InputError(location, "", key,
+                     fmt::format("{} has no numeric parameter \"{}\"{}; its numeric parameters: {}", slot->params->context(),
+                                 name, near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+                                 numeric_keys.empty() ? "none" : join(numeric_keys)));
+  }
+  return chain.parameter(key);
+}
+
+void check_parameter_value(Chain& chain, const std::string& key, double value_si, const std::string& where,
+                           const std::string& subject) {
+  const ParamSpec& spec = spec_of(chain, key);
+  const std::string unit = spec.type == ParamType::quantity && spec.si_unit != "1" ? " " + spec.si_unit : "";
+  if (!spec.in_range(value_si) || std::isnan(value_si))
+    throw InputError(SourceLocation{where, 0, 0}, "", subject,
+                     fmt::format("{:g}{} is out of range: accepted {}", value_si, unit, spec.range_text()));
+  if (spec.type == ParamType::integer && value_si != std::round(value_si))
+    throw InputError(SourceLocation{where, 0, 0}, "", subject, fmt::format("{} is an integer, not {:g}", key, value_si));
+}
+
+// --- PointsEvaluator::Worker ---------------------------------------------------------------------------------
+
+class PointsEvaluator::Worker {
+ public:
+  Worker(const PointsEvaluator& owner) : owner_(owner), chain_(owner.job_.make_chain()) {
+    if (owner.job_.no_solve) chain_.solves.clear();
+    for (const auto& key : owner.job_.parameters) parameters_.push_back(chain_.parameter(key));
+    for (const auto& s : chain_.solves) {
+      const ParameterRef p = chain_.parameter(s.unknown);
+      unknowns_.emplace_back(p, p.value());
+    }
+    for (const auto& name : owner.results_) {
+      Column column{*chain_.results().find(name), false};
+      for (const auto& s : chain_.solves) column.solved = column.solved || s.unknown == name;
+      columns_.push_back(column);
+    }
+    lanes_ = chain_.solves.size() <= 1 && (chain_.solves.empty() || chain_.lanes_can_solve());
+    for (const ParameterRef& p : parameters_) lanes_ = lanes_ && !p.spectral();
+  }
+
+  // Points [begin, end) of a run of `count` points; the first failure's message into `failure` (if empty).
+  std::size_t evaluate(const double* const* values, std::size_t count, std::size_t begin, std::size_t end, double* out,
+                       char* ok, std::string& failure) {
+    std::size_t failed = 0;
+    if (lanes_) {
+      std::vector<Lanes> lanes(parameters_.size());
+      for (std::size_t i = begin; i < end; i += lane_count) {
+        const std::size_t n = std::min<std::size_t>(lane_count, end - i);
+        // A short group repeats its last point in the unused lanes.
+        for (std::size_t p = 0; p < parameters_.size(); ++p)
+          for (int lane = 0; lane < lane_count; ++lane)
+            lanes[p](lane) = values[p][i + std::min<std::size_t>(static_cast<std::size_t>(lane), n - 1)];
+        chain_.clear_lanes();
+        for (std::size_t p = 0; p < parameters_.size(); ++p) chain_.set_lanes(parameters_[p], lanes[p]);
+        if (chain_.solves.empty()) {
+          chain_.evaluate_lanes(Detail::full);
+          std::fill(ok + i, ok + i + n, 1);
+        } else {
+          chain_.solve_lanes(outcome_);
+          for (std::size_t k = 0; k < n; ++k) {
+            ok[i + k] = outcome_.converged[k] ? 1 : 0;
+            if (outcome_.converged[k]) continue;
+            ++failed;
+            if (failure.empty()) failure = message(values, i + k, outcome_.message[k]);
+          }
+        }
+        for (std::size_t c = 0; c < columns_.size(); ++c) {
+          const Lanes& result = chain_.lane_result(columns_[c].id);
+          double* column = out + c * count;
+          for (std::size_t k = 0; k < n; ++k)
+            column[i + k] = (columns_[c].solved && !ok[i + k]) ? std::numeric_limits<double>::quiet_NaN()
+                                                                : result(static_cast<int>(k));
+        }
+      }
+      return failed;
+    }
+    for (std::size_t i = begin; i < end; ++i) {
+      for (std::size_t p = 0; p < parameters_.size(); ++p)
+        if (parameters_[p].value() != values[p][i]) chain_.set(parameters_[p], values[p][i]);
+      // Every point starts from the chain's values of the solved unknowns (not the last point's roots).
+      for (const auto& [parameter, initial] : unknowns_)
+        if (parameter.value() != initial) chain_.set(parameter, initial);
+      bool converged = true;
+      if (chain_.solves.empty()) {
+        chain_.evaluate();
+      } else {
+        chain_.solve_all(outcomes_);
+        for (const auto& o : outcomes_)
+          if (!o.converged) {
+            if (converged && failure.empty()) failure = message(values, i, o.spec.unknown + ": " + o.message);
+            converged = false;
+          }
+      }
+      ok[i] = converged ? 1 : 0;
+      failed += converged ? 0 : 1;
+      for (std::size_t c = 0; c < columns_.size(); ++c)
+        out[c * count + i] = (columns_[c].solved && !converged) ? std::numeric_limits<double>::quiet_NaN()
+                                                                : chain_.results().value(columns_[c].id);
+    }
+    return failed;
+  }
+
+ private:
+  // "point 17 (optics.aperture = 0.2 m): the solve for target.magnitude failed: ..."
+  std::string message(const double* const* values, std::size_t i, const std::string& why) const {
+    std::string at;
+    for (std::size_t p = 0; p < parameters_.size(); ++p)
+      at += fmt::format("{}{} = {:.17g}", p ? ", " : "", owner_.job_.parameters[p], values[p][i]);
+    return fmt::format("point {} ({}): the solve for {} failed: {}", i, at,
+                       chain_.solves.empty() ? std::string() : chain_.solves[0].unknown, why);
+  }
+
+  struct Column {
+    ResultId id;
+    bool solved;  // a solved unknown: NaN where its solve failed
+  };
+  const PointsEvaluator& owner_;
+  Chain chain_;
+  std::vector<ParameterRef> parameters_;
+  std::vector<std::pair<ParameterRef, double>> unknowns_;
+  std::vector<Column> columns_;
+  std::vector<SolveOutcome> outcomes_;
+  LaneSolveOutcome outcome_;
+  bool lanes_ = false;
+};
+
+// --- PointsEvaluator ----------------------------------------------------------------------------------------
+
+PointsEvaluator::PointsEvaluator(PointsJob job) : job_(std::move(job)), checker_(job_.make_chain()) {
+  if (job_.no_solve) checker_.solves.clear();
+  for (std::size_t p = 0; p < job_.parameters.size(); ++p) {
+    const std::string& key = job_.parameters[p];
+    const std::string where = "sweep " + key;
+    for (std::size_t q = 0; q < p; ++q)
+      if (job_.parameters[q] == key) throw InputError(SourceLocation{where, 0, 0}, "", key, "the parameter is given twice");
+    (void)numeric_parameter(checker_, key, where);
+    for (const auto& s : checker_.solves)
+      if (s.unknown == key)
+        throw InputError(SourceLocation{where, 0, 0}, "", key,
+                         "a [[solve]] determines " + key + " at every point: sweep another parameter (or solve=False)");
+  }
+  const Results& results = checker_.results();
+  std::vector<std::string> all;
+  for (std::size_t i = 0; i < results.size(); ++i) all.push_back(results.info(i).name);
+  results_ = job_.results.empty() ? all : job_.results;
+  for (const auto& name : results_) {
+    const auto id = results.find(name);
+    if (!id) {
+      const std::string near = nearest_match(name, all);
+      throw InputError(SourceLocation{"results", 0, 0}, "", name,
+                       fmt::format("no such result{}; Session.run() lists them",
+                                   near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+    }
+    units_.push_back(results.info(*id).si_unit);
+  }
+}
+
+PointsEvaluator::~PointsEvaluator() = default;
+
+void PointsEvaluator::check(const double* const* values, std::size_t count) const {
+  Chain& chain = const_cast<Chain&>(checker_);  // (only read: the parameters' specs)
+  for (std::size_t p = 0; p < job_.parameters.size(); ++p) {
+    const std::string& key = job_.parameters[p];
+    const ParamSpec& spec = spec_of(chain, key);
+    for (std::size_t i = 0; i < count; ++i) {
+      const double v = values[p][i];
+      if (spec.in_range(v) && !std::isnan(v) && (spec.type != ParamType::integer || v == std::round(v))) continue;
+      check_parameter_value(chain, key, v, "sweep " + key, fmt::format("{}[{}] = {:.17g}", key, i, v));
+    }
+  }
+}
+
+std::size_t PointsEvaluator::run(const double* const* values, std::size_t count, double* out, char* ok,
+                                 std::string* failure) {
+  if (count == 0) return 0;
+  preload_plugins();  // workers then only read the host's tables
+  if (workers_.size() < worker_slots()) workers_.resize(worker_slots());
+  std::mutex mutex;
+  std::size_t first_failed = std::numeric_limits<std::size_t>::max();
+  std::string first_message;
+  std::atomic<std::size_t> failed{0};
+  // Chunks of 4096 points: a multiple of the lane count, so that no group straddles two chunks.
+  parallel_chunks(count, 4096, [&](std::size_t slot, std::size_t begin, std::size_t end) {
+    auto& worker = workers_[slot];
+    if (!worker) worker = std::make_unique<Worker>(*this);
+    std::string message;
+    const std::size_t n = worker->evaluate(values, count, begin, end, out, ok, message);
+    if (n == 0) return;
+    failed += n;
+    std::lock_guard lock(mutex);
+    if (begin < first_failed) first_failed = begin, first_message = message;
+  });
+  if (failure && failed > 0) *failure = first_message;
+  return failed;
+}
+
+}  // namespace radchain

@@ -1,0 +1,359 @@
+"""radchain from Python: sensor files loaded, run, solved and swept by the C++ framework (docs/python.md).
+
+    import numpy as np, radchain
+    s = radchain.load("sensors/msx-sbv.toml", set={"optics.aperture": "20 cm"})
+    r = s.run()                              # every result (SI and display), the [[solve]] roots, the [expected] checks
+    r["target.magnitude"]                    # a result in SI
+    r.frame()                                # pandas DataFrame: name, value_si, si_unit, value, unit, stage, equation
+    s.set("optics.aperture", "25 cm")        # TOML value text, as `radchain run --set` takes it
+    s.set("optics.aperture", 0.25)           # or a number in SI
+    s.solve(); s.evaluate()                  # the solves only; forward only (`--no-solve`)
+    out = s.sweep({"optics.aperture": np.linspace(0.15, 0.30, 1_000_000)}, results=["target.magnitude"])
+
+Bad input raises radchain.InputError (a ValueError) with the command line's one-line located message and the
+fields file, line, column, context, subject, problem. Values are in SI everywhere except the display columns.
+"""
+from __future__ import annotations
+
+import json as _json
+import numbers as _numbers
+import warnings as _warnings
+from collections import namedtuple as _namedtuple
+from collections.abc import Mapping as _Mapping
+
+import numpy as _np
+
+from . import _radchain
+from ._radchain import InputError, framework_version, plugin_abi_version
+
+__all__ = [
+    "InputError", "Session", "Result", "load", "loads", "describe", "plugins", "compare", "catalogue",
+    "configure", "search_path", "set_threads", "threads", "framework_version", "plugin_abi_version",
+]
+__version__ = framework_version
+
+#: One result: its name, value in SI and SI unit, value in the display unit and that unit, the plugin that produced it
+#: and the equation it came from.
+Value = _namedtuple("Value", "name value_si si_unit value unit stage equation")
+#: One [[solve]]: the unknown, its criteria, the binding one, the root (SI), whether it converged, evaluations,
+#: why not (message), each criterion's own root, the bracket (SI).
+Solve = _namedtuple("Solve", "unknown criteria binding value_si converged evaluations message roots bracket_si")
+#: One [expected] check: result, printed value (as written and SI), the erratum's value that follows (SI or None),
+#: computed (SI), tolerances, passed, source.
+Check = _namedtuple("Check", "result printed printed_si follows_si computed_si tolerance_si rel_tolerance passed source")
+
+
+def _pandas():
+    try:
+        import pandas
+    except ImportError as error:  # pragma: no cover - pandas is in scripts/setup-debian.sh
+        raise ImportError("this radchain call returns a pandas DataFrame: install python3-pandas") from error
+    return pandas
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (_numbers.Real, _np.floating, _np.integer)) and not isinstance(value, (bool, _np.bool_))
+
+
+def _text_of(value) -> str:
+    if isinstance(value, (bool, _np.bool_)):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return value
+    raise TypeError(f"a parameter value is TOML value text (str) or a number in SI, not {type(value).__name__}")
+
+
+def _split_sets(set):
+    """{"key": "20 cm", "other": 0.5} -> ([("key", "20 cm")], [("other", 0.5)])"""
+    texts, numbers = [], []
+    for key, value in (set or {}).items():
+        if _is_number(value):
+            numbers.append((str(key), float(value)))
+        else:
+            texts.append((str(key), _text_of(value)))
+    return texts, numbers
+
+
+class Result(_Mapping):
+    """What Session.run() / evaluate() return: a mapping result name -> value in SI, with units and provenance.
+
+    r["detector.snr"]     value in SI (float; NaN when not evaluated)
+    r.record(name)        Value(name, value_si, si_unit, value, unit, stage, equation)
+    r.frame()             pandas DataFrame of every result, in the chain's order
+    r.solves, r.expected  lists of Solve and Check records; r.passed: every solve converged and every check held
+    r.json(), r.text()    exactly what `radchain run --format json` / `radchain run` print
+    """
+
+    def __init__(self, report):
+        self._report = report
+        self.names = list(report.names)
+        self.values_si = report.values_si
+        self.values = report.values
+        self.si_units = list(report.si_units)
+        self.units = list(report.units)
+        self.stages = list(report.stages)
+        self.equations = list(report.equations)
+        self._index = {name: i for i, name in enumerate(self.names)}
+        self.solves = [Solve(**s) for s in report.solves]
+        self.expected = [Check(**e) for e in report.expected]
+        self.passed = bool(report.passed)
+        self.sensor = report.sensor
+        self.file = report.file
+
+    def __getitem__(self, name):
+        return float(self.values_si[self._index[name]])
+
+    def __iter__(self):
+        return iter(self.names)
+
+    def __len__(self):
+        return len(self.names)
+
+    def record(self, name) -> Value:
+        i = self._index[name]
+        return Value(name, float(self.values_si[i]), self.si_units[i], float(self.values[i]), self.units[i],
+                     self.stages[i], self.equations[i])
+
+    def display(self, name) -> str:
+        """The value as the report prints it ("15.5565"), in r.record(name).unit."""
+        return self._report.display(self._index[name])
+
+    def frame(self):
+        pd = _pandas()
+        return pd.DataFrame({"name": self.names, "value_si": self.values_si, "si_unit": self.si_units,
+                             "value": self.values, "unit": self.units, "stage": self.stages,
+                             "equation": self.equations}).set_index("name", drop=False)
+
+    to_frame = frame
+
+    def solves_frame(self):
+        return _pandas().DataFrame([s._asdict() for s in self.solves], columns=Solve._fields)
+
+    def expected_frame(self):
+        return _pandas().DataFrame([e._asdict() for e in self.expected], columns=Check._fields)
+
+    def json(self) -> str:
+        return self._report.json()
+
+    def text(self) -> str:
+        return self._report.text()
+
+    def __repr__(self):
+        return f"<radchain.Result {self.sensor!r}: {len(self.names)} results, {len(self.solves)} solves, " \
+               f"{len(self.expected)} checks, {'passed' if self.passed else 'FAILED'}>"
+
+    def __str__(self):
+        return self.text()
+
+
+class Session:
+    """A sensor loaded once; parameters set, then run, solved, evaluated forward or swept (radchain.load/loads)."""
+
+    def __init__(self, native):
+        self._native = native
+
+    @property
+    def path(self) -> str:
+        return self._native.path
+
+    @property
+    def sensor(self) -> str:
+        return self._native.sensor
+
+    @property
+    def solved(self) -> list:
+        """The unknowns of the file's [[solve]] entries."""
+        return list(self._native.solved)
+
+    def set(self, key: str, value) -> "Session":
+        """Sets <section>.<key>: TOML value text ("25 cm", "\\"e490\\"", "true") as `radchain run --set` takes it,
+        or a number in SI (checked against the parameter's range). Returns the session. InputError when refused
+        (nothing changes then)."""
+        if key in self._native.solved:
+            _warnings.warn(f"a [[solve]] overwrites {key} in run() and solve() (evaluate() uses the value set)",
+                           stacklevel=2)
+        if _is_number(value):
+            self._native.set_si(key, float(value))
+        else:
+            self._native.set_text(key, _text_of(value))
+        return self
+
+    def get(self, key: str) -> float:
+        """The current value of a numeric parameter, in SI."""
+        return self._native.get(key)
+
+    def run(self) -> Result:
+        """Every result, the [[solve]] roots and the [[expected]] checks: `radchain run --set ...`."""
+        return Result(self._native.run())
+
+    def solve(self) -> list:
+        """Runs the [[solve]] entries from the values set; returns their Solve records (s[name] reads the results)."""
+        return Result(self._native.run()).solves
+
+    def evaluate(self) -> Result:
+        """Forward only at the values set, the solves skipped: `radchain run --no-solve --set ...`."""
+        return Result(self._native.evaluate())
+
+    def __getitem__(self, name) -> float:
+        """A result (SI) as the last run/solve/evaluate left it."""
+        return self._native.value(name)
+
+    def sweep(self, parameters: dict, results=None, solve: bool = True, frame: bool = False):
+        """Evaluates the chain at every point, on all cores with the GIL released (C++ lanes and solves).
+
+        parameters: {"<section>.<key>": array of SI values}; the arrays broadcast together (numpy rules), so
+        {"optics.aperture": a[:, None], "detector.integration_time": t[None, :]} is a grid. results: result names
+        (default: every result). solve=False evaluates forward only (a solved unknown may then be a parameter).
+        Returns {name: array in SI of the broadcast shape} for each parameter and each result, plus "ok" (False
+        where a solve failed; its unknown is NaN there), or with frame=True a pandas DataFrame of the flattened
+        points. A failed solve warns (RuntimeWarning) with the first failing point.
+        """
+        if not parameters:
+            raise ValueError("sweep: give at least one parameter, e.g. {\"optics.aperture\": numpy.linspace(0.15, 0.3, 16)}")
+        keys = [str(k) for k in parameters]
+        arrays = _np.broadcast_arrays(*[_np.asarray(v, dtype=_np.float64) for v in parameters.values()])
+        shape = arrays[0].shape
+        flat = [_np.ascontiguousarray(a.reshape(-1)) for a in arrays]
+        names, units, out, ok, failed, failure = self._native.sweep(keys, flat, list(results or []), not solve)
+        if failed:
+            _warnings.warn(f"{failed} of {ok.size} points: {failure}", RuntimeWarning, stacklevel=2)
+        columns = {}
+        for k, a in zip(keys, flat):
+            columns[k] = a.reshape(shape)
+        for i, name in enumerate(names):
+            columns[name] = out[i].reshape(shape)
+        columns["ok"] = ok.reshape(shape)
+        if frame:
+            pd = _pandas()
+            df = pd.DataFrame({k: v.reshape(-1) for k, v in columns.items()})
+            df.attrs["units"] = dict(zip(names, units))
+            return df
+        return columns
+
+    def __repr__(self):
+        return f"<radchain.Session {self.sensor!r} ({self.path})>"
+
+
+def load(path, set: dict | None = None) -> Session:
+    """Loads a sensor file, with overrides: {"optics.aperture": "20 cm"} (TOML text, as --set) or a number in SI."""
+    texts, numbers = _split_sets(set)
+    session = Session(_radchain.load(str(path), texts))
+    for key, value in numbers:
+        session.set(key, value)
+    return session
+
+
+def loads(text: str, set: dict | None = None, name: str = "<string>") -> Session:
+    """Loads a sensor file's text. `name` stands for the file in messages; relative data files are looked for beside
+    it (if it is a path), then in RADCHAIN_DATA_PATH and the bundled spectra."""
+    texts, numbers = _split_sets(set)
+    session = Session(_radchain.loads(str(text), str(name), texts))
+    for key, value in numbers:
+        session.set(key, value)
+    return session
+
+
+class Description(dict):
+    """radchain.describe(): a dict (what, name, keys, ...) that prints like `radchain describe`."""
+
+    def __str__(self):
+        lines = []
+        if self["what"] == "kind":
+            lines.append(f"{self['name']} plugins:")
+            for p in self["plugins"]:
+                lines.append(f"  {p['name']:<24} {p['summary']}")
+            return "\n".join(lines)
+        if self["what"] == "plugin":
+            lines.append(f"{self['name']} — {self['kind']} plugin (framework {self['framework_version']}, "
+                         f"ABI {self['abi_version']})")
+            lines.append(f"  {self['summary']}")
+            lines.append(f"  physics: {self['reference']}")
+            lines.append(f"  file: {self['file']}")
+        else:
+            lines.append(f"[{self['name']}]")
+        lines.append("keys:")
+        for k in self["keys"]:
+            kind = k["type"] + (f" [{k['si_unit']}]" if k["si_unit"] else "")
+            status = "required" if k["required"] else (f"default {k['default']}" if k["default"] is not None else "optional")
+            lines.append(f"  {k['key']:<24} {kind:<28} {status:<22} {k['doc']}")
+            if k["accepted"]:
+                lines.append(f"  {'':<24} accepted: {k['accepted']}")
+        for heading in ("publishes", "needs"):
+            if heading in self:
+                lines.append(f"{heading}:")
+                for t in self[heading] or [{"name": "(none)", "unit": "", "meaning": ""}]:
+                    lines.append(f"  {t['name']:<32} [{t['unit']}]  {t['meaning']}")
+        return "\n".join(lines)
+
+    def keys_frame(self):
+        return _pandas().DataFrame(self["keys"])
+
+
+def describe(name: str) -> Description:
+    """A plugin's keys (units, defaults, accepted ranges), what it publishes and needs; a kind's plugins
+    ("criterion"); or a sensor file's own table ("sensor", "solve", "expected")."""
+    return Description(_radchain.describe(str(name)))
+
+
+def plugins():
+    """The plugins on the search path: DataFrame of name, kind, file, version, summary, usable, problem."""
+    return _pandas().DataFrame(_radchain.plugins(),
+                               columns=["name", "kind", "file", "version", "summary", "usable", "problem"])
+
+
+def configure(plugin_path=()):
+    """Sets the plugin search path: these folders, then RADCHAIN_PLUGIN_PATH, the build tree, the install prefix."""
+    if isinstance(plugin_path, str):
+        plugin_path = [plugin_path]
+    _radchain.configure([str(p) for p in plugin_path])
+
+
+def search_path() -> list:
+    return list(_radchain.search_path())
+
+
+def set_threads(n: int = 0):
+    """Caps the threads of sweeps and catalogues (0: every core), like --threads."""
+    _radchain.set_threads(int(n))
+
+
+def threads() -> int:
+    return int(_radchain.threads())
+
+
+def _compare_operand(x):
+    if isinstance(x, Session):
+        return x._native
+    return str(x)
+
+
+def compare(a, b, set: dict | None = None, solve: bool = True, tolerance: float | None = None):
+    """Two sensor files, saved results (`radchain run --format json`, a .json path) or Sessions side by side, as
+    `radchain compare`: DataFrame of kind (input/result), name, a, b, unit, a_value, b_value, a_si, b_si, si_unit,
+    delta, delta_pct, status (same / ok / differs / EXCEEDS / only in A|B). `set` applies to files (TOML text)."""
+    texts, numbers = _split_sets(set)
+    if numbers:
+        raise TypeError("compare(set=...) takes TOML value text, as --set does (set numbers on a Session instead)")
+    rows = _radchain.compare(_compare_operand(a), _compare_operand(b), texts, bool(solve),
+                             None if tolerance is None else float(tolerance))
+    columns = ["kind", "name", "a", "b", "unit", "a_value", "b_value", "a_si", "b_si", "si_unit", "delta",
+               "delta_pct", "status"]
+    return _pandas().DataFrame(rows, columns=columns)
+
+
+def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True):
+    """Sensor files and folders (their *.toml) on all cores, as `radchain catalogue`: DataFrame of sensor, result,
+    computed, reference, unit, delta, delta_pct, check, note. df.attrs["exit_code"] is the command's (0 all held,
+    1 a check failed, 2 a file was bad input), df.attrs["errors"] the bad files' one-line messages."""
+    if isinstance(inputs, str):
+        inputs = [inputs]
+    texts, numbers = _split_sets(set)
+    if numbers:
+        raise TypeError("catalogue(set=...) takes TOML value text, as --set does")
+    table, errors, code = _radchain.catalogue([str(i) for i in inputs], texts, list(results or []), not solve)
+    data = _json.loads(table)
+    df = _pandas().DataFrame(data["rows"], columns=data["columns"])
+    df.attrs["exit_code"] = code
+    df.attrs["errors"] = list(errors)
+    df.attrs["summary"] = data.get("summary", "")
+    return df

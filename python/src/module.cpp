@@ -1,0 +1,654 @@
+// radchain._radchain: the C++ side of `import radchain` (python/radchain/__init__.py is the Python side).
+// Everything here is a thin binding of radchain::core and radchain::batch: a Session owns one Chain built from a
+// sensor file (or its text) with overrides, exactly as `radchain run --set` builds it; sweeps go through
+// PointsEvaluator (radchain/batch/points.hpp) with the GIL released, on all cores.
+#include "radchain/batch/catalogue.hpp"
+#include "radchain/batch/compare.hpp"
+#include "radchain/batch/points.hpp"
+#include "radchain/batch/table.hpp"
+#include "radchain/batch/thread_pool.hpp"
+#include "radchain/chain.hpp"
+#include "radchain/error.hpp"
+#include "radchain/plugin_host.hpp"
+#include "radchain/report.hpp"
+#include "radchain/sensor_file.hpp"
+#include "radchain/version.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace py = pybind11;
+
+namespace radchain::python {
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// The Python exception type radchain.InputError (a ValueError), created at import.
+PyObject* input_error_type = nullptr;
+
+void raise_input_error(const InputError& e) {
+  py::object type = py::reinterpret_borrow<py::object>(input_error_type);
+  py::object error = type(e.what());
+  const SourceLocation& w = e.where();
+  auto or_none = [](const std::string& s) -> py::object { return s.empty() ? py::object(py::none()) : py::str(s); };
+  error.attr("file") = or_none(w.file);
+  error.attr("line") = w.line > 0 ? py::object(py::int_(w.line)) : py::object(py::none());
+  error.attr("column") = w.column > 0 ? py::object(py::int_(w.column)) : py::object(py::none());
+  error.attr("context") = or_none(e.context());
+  error.attr("subject") = or_none(e.subject());
+  error.attr("problem") = or_none(e.problem());
+  PyErr_SetObject(input_error_type, error.ptr());
+}
+
+// --- reports ---------------------------------------------------------------------------------------------------
+
+py::dict solve_dict(const SolveOutcome& s) {
+  py::dict d;
+  d["unknown"] = s.spec.unknown;
+  d["criteria"] = s.spec.criteria;
+  d["binding"] = s.binding;
+  d["value_si"] = s.value_si;
+  d["converged"] = s.converged;
+  d["evaluations"] = s.iterations;
+  d["message"] = s.message;
+  py::dict roots;
+  for (const auto& [name, value] : s.roots) roots[py::str(name)] = value;
+  d["roots"] = roots;
+  d["bracket_si"] = py::make_tuple(s.spec.lo, s.spec.hi);
+  return d;
+}
+
+py::dict expectation_dict(const ExpectationOutcome& e) {
+  py::dict d;
+  d["result"] = e.spec.result;
+  d["printed"] = e.spec.as_written;
+  d["printed_si"] = e.spec.value_si;
+  d["follows_si"] = e.spec.follows_si ? py::object(py::float_(*e.spec.follows_si)) : py::object(py::none());
+  d["computed_si"] = e.found ? e.computed_si : nan;
+  d["tolerance_si"] = e.spec.tolerance_si;
+  d["rel_tolerance"] = e.spec.rel_tolerance;
+  d["passed"] = e.passed;
+  d["source"] = e.spec.source;
+  return d;
+}
+
+py::array_t<double> to_array(const std::vector<double>& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+// --- Session -----------------------------------------------------------------------------------------------------
+
+class Session {
+ public:
+  Session(std::string path, std::optional<std::string> text, std::vector<Override> overrides)
+      : path_(std::move(path)), text_(std::move(text)), overrides_(std::move(overrides)) {
+    chain_ = build(overrides_, si_);
+    remember_unknowns();
+  }
+
+  const std::string& path() const { return path_; }
+  std::string sensor_name() const { return chain_.sensor_name; }
+  std::string description() const { return chain_.description; }
+  std::vector<std::string> solved() const {
+    std::vector<std::string> u;
+    for (const auto& s : chain_.solves) u.push_back(s.unknown);
+    return u;
+  }
+  std::vector<std::pair<std::string, std::string>> overrides() const {
+    std::vector<std::pair<std::string, std::string>> o;
+    for (const auto& x : overrides_) o.emplace_back(x.key, x.value);
+    return o;
+  }
+  std::vector<std::pair<std::string, double>> si_values() const { return si_; }
+
+  // set(key, "25 cm"): TOML value text, applied as `--set` is (the chain is rebuilt: the located messages are the
+  // command line's). Nothing changes when it is refused.
+  void set_text(const std::string& key, const std::string& value) {
+    std::vector<Override> overrides = overrides_;
+    bool replaced = false;
+    for (auto& o : overrides)
+      if (o.key == key) o.value = value, replaced = true;
+    if (!replaced) overrides.push_back(Override{key, value});
+    std::vector<std::pair<std::string, double>> si = si_;
+    std::erase_if(si, [&](const auto& x) { return x.first == key; });
+    Chain chain = build(overrides, si);
+    chain_ = std::move(chain);
+    overrides_ = std::move(overrides), si_ = std::move(si);
+    remember_unknowns();
+    evaluator_.reset();
+  }
+
+  // set(key, 0.25): a numeric parameter in SI, checked against its range, set through Chain::set (nothing rebuilt).
+  void set_si(const std::string& key, double value) {
+    const ParameterRef p = numeric_parameter(chain_, key, "set " + key);
+    check_parameter_value(chain_, key, value, "set " + key, key + " = " + py::repr(py::float_(value)).cast<std::string>());
+    chain_.set(p, value);
+    std::erase_if(overrides_, [&](const Override& o) { return o.key == key; });
+    bool replaced = false;
+    for (auto& x : si_)
+      if (x.first == key) x.second = value, replaced = true;
+    if (!replaced) si_.emplace_back(key, value);
+    remember_unknowns_after_set(key, value);
+    evaluator_.reset();
+  }
+
+  // The current value (SI) of a numeric parameter.
+  double get(const std::string& key) { return numeric_parameter(chain_, key, "get " + key).value(); }
+
+  // Every result, solves and [expected] checks, from the parameters as set (solved unknowns from their set
+  // values): `radchain run --set ...`.
+  Report run() {
+    reset_unknowns();
+    return chain_.run();
+  }
+  // Forward only: `radchain run --no-solve --set ...`.
+  Report evaluate() {
+    reset_unknowns();
+    std::vector<SolveSpec> solves = std::move(chain_.solves);
+    chain_.solves.clear();
+    Report report;
+    try {
+      report = chain_.run();
+    } catch (...) {
+      chain_.solves = std::move(solves);
+      throw;
+    }
+    chain_.solves = std::move(solves);
+    return report;
+  }
+  double value(const std::string& name) const { return chain_.result(name); }
+  bool has_result(const std::string& name) const { return chain_.results().find(name).has_value(); }
+
+  // A fresh chain as the session builds it (compare's inputs).
+  Chain fresh_chain() const { return build(overrides_, si_); }
+
+  // Points: values[p] is parameter p at every point (SI). Returns (result names, SI units, out[r][i], ok[i],
+  // failed count, first failure).
+  py::tuple sweep(const std::vector<std::string>& keys, const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& arrays,
+                  const std::vector<std::string>& results, bool no_solve) {
+    if (keys.size() != arrays.size()) throw std::invalid_argument("sweep: one array per parameter");
+    std::size_t count = 0;
+    for (std::size_t p = 0; p < arrays.size(); ++p) {
+      if (arrays[p].ndim() != 1) throw std::invalid_argument("sweep: 1-D arrays expected");
+      const auto n = static_cast<std::size_t>(arrays[p].shape(0));
+      if (p == 0) count = n;
+      else if (n != count) throw std::invalid_argument("sweep: arrays of different lengths");
+    }
+    std::vector<const double*> values;
+    for (const auto& a : arrays) values.push_back(a.data());
+    std::string key = no_solve ? "no-solve\n" : "solve\n";
+    for (const auto& k : keys) key += "p " + k + "\n";
+    for (const auto& r : results) key += "r " + r + "\n";
+    {
+      py::gil_scoped_release release;
+      if (!evaluator_ || evaluator_key_ != key) {
+        evaluator_.reset();
+        PointsJob job;
+        job.make_chain = [path = path_, text = text_, overrides = overrides_, si = si_] {
+          return build_chain(path, text, overrides, si);
+        };
+        job.parameters = keys;
+        job.results = results;
+        job.no_solve = no_solve;
+        evaluator_ = std::make_unique<PointsEvaluator>(std::move(job));
+        evaluator_key_ = key;
+      }
+      evaluator_->check(values.data(), count);
+    }
+    const std::size_t n_results = evaluator_->results().size();
+    py::array_t<double> out({static_cast<py::ssize_t>(n_results), static_cast<py::ssize_t>(count)});
+    py::array_t<bool> ok(static_cast<py::ssize_t>(count));
+    double* out_data = out.mutable_data();
+    char* ok_data = reinterpret_cast<char*>(ok.mutable_data());
+    std::string failure;
+    std::size_t failed = 0;
+    {
+      py::gil_scoped_release release;
+      failed = evaluator_->run(values.data(), count, out_data, ok_data, &failure);
+    }
+    return py::make_tuple(evaluator_->results(), evaluator_->result_units(), out, ok, failed, failure);
+  }
+
+  std::mutex mutex;  // one call at a time (the GIL is released while the chain works)
+
+ private:
+  static Chain build_chain(const std::string& path, const std::optional<std::string>& text,
+                           const std::vector<Override>& overrides, const std::vector<std::pair<std::string, double>>& si) {
+    Chain chain = text ? load_sensor_text(*text, path, overrides) : load_sensor(path, overrides);
+    for (const auto& [key, value] : si) chain.set(chain.parameter(key), value);
+    return chain;
+  }
+  Chain build(const std::vector<Override>& overrides, const std::vector<std::pair<std::string, double>>& si) const {
+    return build_chain(path_, text_, overrides, si);
+  }
+  // The solved unknowns' values as built: each run starts its solves from them.
+  void remember_unknowns() {
+    unknowns_.clear();
+    for (const auto& s : chain_.solves) {
+      const ParameterRef p = chain_.parameter(s.unknown);
+      unknowns_.emplace_back(p, p.value());
+    }
+  }
+  void remember_unknowns_after_set(const std::string& key, double value) {
+    for (std::size_t i = 0; i < chain_.solves.size() && i < unknowns_.size(); ++i)
+      if (chain_.solves[i].unknown == key) unknowns_[i].second = value;
+  }
+  void reset_unknowns() {
+    for (const auto& [p, v] : unknowns_)
+      if (p.value() != v) chain_.set(p, v);
+  }
+
+  std::string path_;
+  std::optional<std::string> text_;
+  std::vector<Override> overrides_;
+  std::vector<std::pair<std::string, double>> si_;
+  Chain chain_;
+  std::vector<std::pair<ParameterRef, double>> unknowns_;
+  std::unique_ptr<PointsEvaluator> evaluator_;
+  std::string evaluator_key_;
+};
+
+// Calls f() with the session's mutex held and the GIL held. The mutex is taken with the GIL released, so that a
+// thread waiting for it never holds the GIL that the thread holding it may need.
+template <class F>
+auto locked(Session& s, F&& f) {
+  std::unique_lock lock(s.mutex, std::defer_lock);
+  {
+    py::gil_scoped_release release;
+    lock.lock();
+  }
+  return f();
+}
+
+std::vector<Override> to_overrides(const std::vector<std::pair<std::string, std::string>>& sets) {
+  std::vector<Override> o;
+  for (const auto& [k, v] : sets) o.push_back(Override{k, v});
+  return o;
+}
+
+// --- describe ------------------------------------------------------------------------------------------------------
+
+std::string type_name(const ParamSpec& p) {
+  switch (p.type) {
+    case ParamType::quantity: return "quantity";
+    case ParamType::number: return "number";
+    case ParamType::integer: return "integer";
+    case ParamType::text: return "string";
+    case ParamType::choice: return "choice";
+    case ParamType::flag: return "boolean";
+    case ParamType::spectrum: return "spectrum";
+  }
+  return "?";
+}
+
+py::list keys_of(const Schema& schema) {
+  py::list keys;
+  for (const auto& p : schema) {
+    py::dict k;
+    k["key"] = p.key;
+    k["type"] = type_name(p);
+    k["si_unit"] = (p.type == ParamType::quantity || p.type == ParamType::spectrum) ? p.si_unit : std::string();
+    k["shape"] = p.shape == ParamShape::list ? "list" : p.shape == ParamShape::pair ? "pair" : "scalar";
+    k["required"] = p.required;
+    k["default"] = p.default_value ? py::object(py::str(*p.default_value)) : py::object(py::none());
+    k["example"] = p.example;
+    k["doc"] = p.doc;
+    k["accepted"] = p.range_text();
+    k["spectral"] = p.spectral;
+    keys.append(k);
+  }
+  return keys;
+}
+
+py::list terms_of(const std::vector<Term>& terms) {
+  py::list out;
+  for (const Term& t : terms) {
+    py::dict d;
+    d["name"] = t.per_criterion() ? t.in_criterion("<name>") : std::string(t.name);
+    d["unit"] = std::string(t.unit);
+    d["meaning"] = std::string(t.meaning);
+    out.append(d);
+  }
+  return out;
+}
+
+py::dict describe_plugin(const PluginInfo& info, const std::string& path) {
+  py::dict d;
+  d["what"] = "plugin";
+  d["name"] = std::string(info.name);
+  d["kind"] = std::string(to_string(info.kind));
+  d["summary"] = std::string(info.summary);
+  d["reference"] = std::string(info.reference);
+  d["file"] = path;
+  d["framework_version"] = std::string(info.framework_version);
+  d["abi_version"] = info.abi_version;
+  d["keys"] = keys_of(info.schema());
+  d["publishes"] = terms_of(info.publishes);
+  std::vector<Term> needs;
+  py::list optional;
+  for (const Need& n : info.needs) needs.push_back(n.term), optional.append(n.optional);
+  py::list need_list = terms_of(needs);
+  for (std::size_t i = 0; i < needs.size(); ++i) need_list[i]["optional"] = optional[i];
+  d["needs"] = need_list;
+  return d;
+}
+
+std::optional<Kind> kind_named(const std::string& name) {
+  if (auto kind = kind_from_name(name)) return kind;
+  for (const KindInfo& k : kinds)
+    if (k.section == name) return k.kind;
+  return std::nullopt;
+}
+
+py::dict describe(const std::string& name) {
+  py::dict d;
+  if (name == "sensor" || name == "solve" || name == "expected") {
+    d["what"] = "table";
+    d["name"] = name;
+    d["keys"] = keys_of(name == "sensor" ? sensor_table_schema() : name == "solve" ? solve_entry_schema() : expected_entry_schema());
+    return d;
+  }
+  if (auto kind = kind_named(name)) {
+    d["what"] = "kind";
+    d["name"] = std::string(to_string(*kind));
+    py::list plugins;
+    for (const auto& f : PluginHost::instance().discover())
+      if (f.kind == *kind) {
+        const PluginInfo& info = PluginHost::instance().load_file(f.path);
+        py::dict p;
+        p["name"] = std::string(info.name);
+        p["summary"] = std::string(info.summary);
+        p["file"] = f.path;
+        plugins.append(p);
+      }
+    d["plugins"] = plugins;
+    return d;
+  }
+  if (name.find('/') != std::string::npos) return describe_plugin(PluginHost::instance().load_file(name), name);
+  std::vector<std::string> names;
+  for (const auto& f : PluginHost::instance().discover()) {
+    if (f.name == name) return describe_plugin(PluginHost::instance().load_file(f.path), f.path);
+    names.push_back(f.name);
+  }
+  std::vector<std::string> candidates = names;
+  std::vector<std::string> kind_names;
+  for (const KindInfo& k : kinds) kind_names.emplace_back(k.name);
+  candidates.insert(candidates.end(), kind_names.begin(), kind_names.end());
+  for (const char* t : {"sensor", "solve", "expected"}) candidates.emplace_back(t);
+  const std::string near = nearest_match(name, candidates);
+  throw InputError({}, "describe", name,
+                   "unknown plugin, kind or table" + (near.empty() ? std::string() : " (did you mean \"" + near + "\"?)") +
+                       "; plugins: " + join(names) + "; kinds: " + join(kind_names) + "; tables: sensor, solve, expected");
+}
+
+py::list plugins() {
+  py::list out;
+  for (const auto& f : PluginHost::instance().discover()) {
+    py::dict p;
+    p["name"] = f.name;
+    p["kind"] = std::string(to_string(f.kind));
+    p["file"] = f.path;
+    try {
+      const PluginInfo& info = PluginHost::instance().load_file(f.path);
+      p["version"] = std::string(info.framework_version);
+      p["summary"] = std::string(info.summary);
+      p["usable"] = true;
+      p["problem"] = "";
+    } catch (const InputError& error) {
+      p["version"] = "";
+      p["summary"] = "";
+      p["usable"] = false;
+      p["problem"] = error.problem();
+    }
+    out.append(p);
+  }
+  return out;
+}
+
+// The plugin search path: `explicit_dirs`, then RADCHAIN_PLUGIN_PATH, then the build tree's plugins (this module was
+// built beside them), then the install prefix.
+void configure(const std::vector<std::string>& explicit_dirs) {
+  std::vector<std::string> dirs = explicit_dirs;
+  if (const char* env = std::getenv("RADCHAIN_PLUGIN_PATH")) dirs.emplace_back(env);
+#ifdef RADCHAIN_PY_PLUGIN_DIR
+  dirs.emplace_back(RADCHAIN_PY_PLUGIN_DIR);
+#endif
+  PluginHost::instance().configure(dirs);
+}
+
+// --- catalogue and compare ---------------------------------------------------------------------------------------
+
+py::tuple catalogue(const std::vector<std::string>& inputs, const std::vector<std::pair<std::string, std::string>>& sets,
+                    const std::vector<std::string>& results, bool no_solve) {
+  std::ostringstream out;
+  std::vector<std::string> errors;
+  int code = 0;
+  {
+    py::gil_scoped_release release;
+    const std::vector<std::string> files = catalogue_files(inputs);
+    CatalogueOptions options;
+    options.overrides = to_overrides(sets);
+    options.extra_results = results;
+    options.no_solve = no_solve;
+    TableWriter writer(out, TableFormat::json, catalogue_layout(), files.size(), {}, catalogue_job(files, options));
+    code = run_catalogue(files, options, writer, &errors);
+    writer.finish(code);
+  }
+  return py::make_tuple(out.str(), errors, code);
+}
+
+CompareInput compare_input(const py::object& x, const std::vector<Override>& overrides, bool solve) {
+  if (py::isinstance<Session>(x)) {
+    Session& s = x.cast<Session&>();
+    return locked(s, [&] {
+      py::gil_scoped_release release;
+      CompareInput input;
+      input.path = s.path();
+      input.chain = s.fresh_chain();
+      if (!solve) input.chain->solves.clear();
+      input.report = solve ? s.run() : s.evaluate();
+      input.sensor_name = input.report.sensor_name;
+      return input;
+    });
+  }
+  const std::string path = x.cast<std::string>();
+  py::gil_scoped_release release;
+  return load_compare_input(path, overrides, solve);
+}
+
+// The status `radchain compare` prints for a result (compare.cpp): same, ok, differs, EXCEEDS, only in A/B.
+std::string result_status(const ResultDifference& r, std::optional<double> tolerance) {
+  if (!r.in_a) return tolerance ? "EXCEEDS (only in B)" : "only in B";
+  if (!r.in_b) return tolerance ? "EXCEEDS (only in A)" : "only in A";
+  if (r.same()) return "same";
+  if (tolerance) return r.exceeds(*tolerance) ? "EXCEEDS" : "ok";
+  return r.exceeds(rounding_tolerance) ? "differs" : "ok";
+}
+
+py::list compare(const py::object& a, const py::object& b, const std::vector<std::pair<std::string, std::string>>& sets,
+                 bool solve, std::optional<double> tolerance) {
+  const std::vector<Override> overrides = to_overrides(sets);
+  const CompareInput ia = compare_input(a, overrides, solve);
+  const CompareInput ib = compare_input(b, overrides, solve);
+  const Comparison c = radchain::compare(ia, ib);
+  py::list rows;
+  for (const auto& d : c.inputs) {
+    py::dict r;
+    r["kind"] = "input";
+    r["name"] = d.name;
+    r["a"] = d.a;
+    r["b"] = d.b;
+    r["unit"] = d.unit;
+    r["a_value"] = d.a_value;
+    r["b_value"] = d.b_value;
+    r["a_si"] = d.a_si;
+    r["b_si"] = d.b_si;
+    r["si_unit"] = d.si_unit;
+    r["delta"] = d.b_value - d.a_value;
+    r["delta_pct"] = d.a_si != 0 ? 100 * (d.b_si - d.a_si) / std::abs(d.a_si) : nan;
+    r["status"] = "differs";
+    rows.append(r);
+  }
+  for (const auto& d : c.results) {
+    py::dict r;
+    r["kind"] = "result";
+    r["name"] = d.name;
+    r["a"] = d.in_a ? number_cell(d.a_si * d.factor) : std::string();
+    r["b"] = d.in_b ? number_cell(d.b_si * d.factor) : std::string();
+    r["unit"] = d.unit == "1" ? std::string() : d.unit;
+    r["a_value"] = d.in_a ? d.a_si * d.factor : nan;
+    r["b_value"] = d.in_b ? d.b_si * d.factor : nan;
+    r["a_si"] = d.in_a ? d.a_si : nan;
+    r["b_si"] = d.in_b ? d.b_si : nan;
+    r["si_unit"] = "";
+    r["delta"] = d.in_a && d.in_b ? d.delta() : nan;
+    r["delta_pct"] = d.in_a && d.in_b ? 100 * d.relative() : nan;
+    r["status"] = result_status(d, tolerance);
+    rows.append(r);
+  }
+  return rows;
+}
+
+}  // namespace
+}  // namespace radchain::python
+
+PYBIND11_MODULE(_radchain, m) {
+  using namespace radchain;
+  using namespace radchain::python;
+  m.doc() = "radchain: radiometry of electro-optical sensors (C++ core; see radchain/__init__.py)";
+
+  input_error_type = PyErr_NewExceptionWithDoc(
+      "radchain.InputError",
+      "Bad input (a sensor file, an override, a parameter value): the one-line located message of the command line.\n"
+      "Fields: file, line, column (None when unknown), context, subject, problem.",
+      PyExc_ValueError, nullptr);
+  m.attr("InputError") = py::reinterpret_borrow<py::object>(input_error_type);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      raise_input_error(e);
+    }
+  });
+
+  configure({});
+  m.attr("framework_version") = framework_version;
+  m.attr("plugin_abi_version") = plugin_abi_version;
+
+  py::class_<Report>(m, "Report")
+      .def_property_readonly("sensor", [](const Report& r) { return r.sensor_name; })
+      .def_property_readonly("file", [](const Report& r) { return r.sensor_file; })
+      .def_property_readonly("names", [](const Report& r) {
+        std::vector<std::string> v;
+        for (const auto& i : r.results) v.push_back(i.name);
+        return v;
+      })
+      .def_property_readonly("values_si", [](const Report& r) { return to_array(r.values); })
+      .def_property_readonly("si_units", [](const Report& r) {
+        std::vector<std::string> v;
+        for (const auto& i : r.results) v.push_back(i.si_unit);
+        return v;
+      })
+      .def_property_readonly("units", [](const Report& r) {
+        std::vector<std::string> v;
+        for (const auto& i : r.results) v.push_back(i.display_unit);
+        return v;
+      })
+      .def_property_readonly("values", [](const Report& r) {
+        std::vector<double> v;
+        for (std::size_t i = 0; i < r.results.size(); ++i) v.push_back(r.values[i] * r.results[i].display_factor);
+        return to_array(v);
+      })
+      .def_property_readonly("stages", [](const Report& r) {
+        std::vector<std::string> v;
+        for (const auto& i : r.results) v.push_back(i.stage);
+        return v;
+      })
+      .def_property_readonly("equations", [](const Report& r) {
+        std::vector<std::string> v;
+        for (const auto& i : r.results) v.push_back(i.equation);
+        return v;
+      })
+      .def_property_readonly("solves", [](const Report& r) {
+        py::list l;
+        for (const auto& s : r.solves) l.append(solve_dict(s));
+        return l;
+      })
+      .def_property_readonly("expected", [](const Report& r) {
+        py::list l;
+        for (const auto& e : r.expectations) l.append(expectation_dict(e));
+        return l;
+      })
+      .def_property_readonly("passed", &Report::all_passed)
+      .def("json", &format_report_json, "the report as `radchain run --format json` prints it")
+      .def("text", &format_report_text, "the report as `radchain run` prints it")
+      .def("display", [](const Report& r, std::size_t i) { return format_value(r.values.at(i), r.results.at(i)); });
+
+  py::class_<Session>(m, "Session")
+      .def_property_readonly("path", &Session::path)
+      .def_property_readonly("sensor", &Session::sensor_name)
+      .def_property_readonly("description", &Session::description)
+      .def_property_readonly("solved", &Session::solved)
+      .def_property_readonly("overrides", &Session::overrides)
+      .def_property_readonly("si_values", &Session::si_values)
+      .def("set_text", [](Session& s, const std::string& key, const std::string& value) {
+        py::gil_scoped_release release;
+        std::lock_guard lock(s.mutex);
+        s.set_text(key, value);
+      })
+      .def("set_si", [](Session& s, const std::string& key, double value) { locked(s, [&] { s.set_si(key, value); }); })
+      .def("get", [](Session& s, const std::string& key) { return locked(s, [&] { return s.get(key); }); })
+      .def("run", [](Session& s) {
+        py::gil_scoped_release release;
+        std::lock_guard lock(s.mutex);
+        return s.run();
+      })
+      .def("evaluate", [](Session& s) {
+        py::gil_scoped_release release;
+        std::lock_guard lock(s.mutex);
+        return s.evaluate();
+      })
+      .def("value", [](Session& s, const std::string& name) {
+        return locked(s, [&] {
+          if (!s.has_result(name)) throw py::key_error(name);
+          return s.value(name);
+        });
+      })
+      .def("sweep", [](Session& s, const std::vector<std::string>& keys,
+                       const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& arrays,
+                       const std::vector<std::string>& results, bool no_solve) {
+        return locked(s, [&] { return s.sweep(keys, arrays, results, no_solve); });
+      });
+
+  m.def("load", [](const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets) {
+    py::gil_scoped_release release;
+    return std::make_unique<Session>(path, std::nullopt, to_overrides(sets));
+  });
+  m.def("loads", [](const std::string& text, const std::string& name, const std::vector<std::pair<std::string, std::string>>& sets) {
+    py::gil_scoped_release release;
+    return std::make_unique<Session>(name, text, to_overrides(sets));
+  });
+  m.def("describe", &describe);
+  m.def("plugins", &plugins);
+  m.def("configure", &configure, py::arg("plugin_path") = std::vector<std::string>{});
+  m.def("search_path", [] { return PluginHost::instance().search_path(); });
+  m.def("catalogue", &catalogue);
+  m.def("compare", static_cast<py::list (*)(const py::object&, const py::object&, const std::vector<std::pair<std::string, std::string>>&, bool, std::optional<double>)>(&radchain::python::compare));
+  m.def("set_threads", [](std::size_t n) { limit_threads(n); });
+  m.def("threads", [] { return thread_count(); });
+}

@@ -1,0 +1,86 @@
+"""Bad input raises radchain.InputError (a ValueError) with the command line's one-line message and its fields."""
+import pytest
+
+import radchain
+
+
+def bad_copy(tmp_path, sbv, old, new):
+    text = open(sbv).read()
+    assert old in text
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(old, new, 1))
+    return path, path.read_text()
+
+
+def location_of(text, needle):
+    """1-based line and column of the first occurrence of needle in text (the independent reference)."""
+    before = text[: text.index(needle)]
+    return before.count("\n") + 1, len(before) - before.rfind("\n")
+
+
+def test_bad_unit_in_file_has_cli_message_and_fields(cli, sbv, tmp_path):
+    path, text = bad_copy(tmp_path, sbv, 'aperture = "15 cm"', 'aperture = "15 kg"')
+    with pytest.raises(radchain.InputError) as caught:
+        radchain.load(str(path))
+    e = caught.value
+    assert isinstance(e, ValueError)
+    done = cli("run", path, check=False)
+    assert done.returncode == 2
+    assert str(e) == done.stderr.strip()
+    line, column = location_of(text, 'aperture = "15 kg"')  # the key's position (toml++ locates the key)
+    assert (e.file, e.line, e.column) == (str(path), line, column)
+    assert e.subject == 'aperture = "15 kg"'
+    assert e.context == 'optics (plugin "telescope")'
+    assert str(e).startswith(f"{path}:{line}:{column}: optics (plugin \"telescope\"): aperture = \"15 kg\": ")
+
+
+def test_toml_syntax_error_from_text(cli, sbv, tmp_path):
+    path, text = bad_copy(tmp_path, sbv, "qe = 0.27", "qe = = 0.27")
+    with pytest.raises(radchain.InputError) as caught:
+        radchain.loads(text, name=str(path))
+    assert str(caught.value) == cli("run", path, check=False).stderr.strip()
+    assert caught.value.line == location_of(text, "qe = = 0.27")[0]
+
+
+def test_bad_set_text_is_the_cli_set_message_and_changes_nothing(cli, sbv):
+    s = radchain.load(sbv)
+    before = s.run().json()
+    with pytest.raises(radchain.InputError) as caught:
+        s.set("optics.aperture", "15 kg")
+    done = cli("run", sbv, "--set", "optics.aperture=15 kg", check=False)
+    assert done.returncode == 2 and str(caught.value) == done.stderr.strip()
+    assert s.run().json() == before
+    with pytest.raises(radchain.InputError) as caught:
+        radchain.load(sbv, set={"optcs.aperture": "20 cm"})
+    done = cli("run", sbv, "--set", "optcs.aperture=20 cm", check=False)
+    assert str(caught.value) == done.stderr.strip() and "did you mean \"optics\"" in str(caught.value)
+
+
+def test_bad_set_number(sbv):
+    s = radchain.load(sbv)
+    with pytest.raises(radchain.InputError) as caught:
+        s.set("optics.aperture", -0.1)
+    assert "out of range" in caught.value.problem and caught.value.file == "set optics.aperture"
+    with pytest.raises(radchain.InputError) as caught:
+        s.set("optics.apertur", 0.2)
+    assert 'did you mean "aperture"' in caught.value.problem
+    with pytest.raises(radchain.InputError) as caught:
+        s.set("detector.adc_bits", 12.5)
+    assert "integer" in caught.value.problem
+    with pytest.raises(radchain.InputError):
+        s.set("detector.quantisation", 1.0)  # a choice, not a number
+    assert s.get("optics.aperture") == 0.15
+
+
+def test_missing_file(cli, tmp_path):
+    missing = tmp_path / "nope.toml"
+    with pytest.raises(radchain.InputError) as caught:
+        radchain.load(str(missing))
+    assert str(caught.value) == cli("run", missing, check=False).stderr.strip()
+    assert caught.value.file == str(missing)
+
+
+def test_describe_unknown_plugin():
+    with pytest.raises(radchain.InputError) as caught:
+        radchain.describe("telescop")
+    assert 'did you mean "telescope"' in str(caught.value)

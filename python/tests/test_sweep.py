@@ -1,0 +1,124 @@
+"""Session.sweep against `radchain sweep` and against single runs at the same values."""
+import csv
+import io
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import radchain
+
+
+def cli_csv(cli, *args):
+    rows = list(csv.reader(io.StringIO(cli("sweep", *args, "--format", "csv").stdout)))
+    return rows[0], np.array([[float(x) for x in row] for row in rows[1:]])
+
+
+def close(a, b, rel):
+    return abs(a - b) <= rel * max(abs(a), abs(b))
+
+
+def test_sweep_equals_cli_sweep(cli, sbv):
+    # `--set optics.aperture=15 cm:30 cm:16`: value i = 15 + 15 i/15 cm (SweepAxis::value), in SI
+    cm = 15 + (30 - 15) * np.arange(16) / 15
+    apertures = cm * 0.01
+    out = radchain.load(sbv).sweep({"optics.aperture": apertures}, results=["target.magnitude", "detector.snr"])
+    header, ref = cli_csv(cli, sbv, "--set", "optics.aperture=15 cm:30 cm:16", "--results",
+                          "target.magnitude,detector.snr")
+    assert header == ["optics.aperture_cm", "target.magnitude", "detector.snr"]
+    assert list(out) == ["optics.aperture", "target.magnitude", "detector.snr", "ok"]
+    assert out["ok"].all() and out["target.magnitude"].shape == (16,)
+    np.testing.assert_allclose(out["optics.aperture"] * 100, ref[:, 0], rtol=1e-12)
+    # the CLI prints 10 significant digits
+    np.testing.assert_allclose(out["target.magnitude"], ref[:, 1], rtol=6e-10, atol=0)
+    np.testing.assert_allclose(out["detector.snr"], ref[:, 2], rtol=6e-10, atol=0)
+    assert np.all(np.diff(out["target.magnitude"]) > 0)  # fainter limits with bigger pupils
+
+
+def test_sweep_point_equals_run_at_that_value(sbv):
+    apertures = np.array([0.1, 0.17, 0.2, 0.333, 0.5])
+    out = radchain.load(sbv).sweep({"optics.aperture": apertures})
+    for i, d in enumerate(apertures):
+        s = radchain.load(sbv)
+        s.set("optics.aperture", float(d))
+        r = s.run()
+        # lanes solve by Dekker's method, run() by TOMS 748: both within 2^-47 of the root (docs/architecture.md)
+        assert close(out["target.magnitude"][i], r["target.magnitude"], 1e-12), d
+        for name in r:
+            if math.isnan(r[name]):
+                assert math.isnan(out[name][i]), name
+            else:
+                assert close(out[name][i], r[name], 1e-10) or abs(out[name][i] - r[name]) < 1e-12, (name, d)
+
+
+def test_forward_sweep_equals_evaluate(sbv):
+    magnitudes = np.linspace(12, 18, 13)
+    times = np.array([0.5, 2.0])
+    out = radchain.load(sbv).sweep({"target.magnitude": magnitudes[:, None], "detector.integration_time": times[None, :]},
+                                   results=["detector.snr", "criteria.detection.margin"], solve=False)
+    assert out["detector.snr"].shape == (13, 2)
+    assert np.array_equal(out["target.magnitude"], np.broadcast_to(magnitudes[:, None], (13, 2)))
+    for i in (0, 6, 12):
+        for j in (0, 1):
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # setting a solved unknown warns; evaluate() uses it
+                s = radchain.load(sbv, set={"target.magnitude": float(magnitudes[i]),
+                                            "detector.integration_time": float(times[j])})
+            r = s.evaluate()
+            assert close(out["detector.snr"][i, j], r["detector.snr"], 1e-13)
+            assert close(out["criteria.detection.margin"][i, j], r["criteria.detection.margin"], 1e-12)
+    # SNR rises with the integration time and falls with the magnitude
+    assert np.all(out["detector.snr"][:, 1] > out["detector.snr"][:, 0])
+    assert np.all(np.diff(out["detector.snr"][:, 0]) < 0)
+
+
+def test_spectral_parameter_sweeps_point_by_point(sbv):
+    band_max = np.array([0.7e-6, 0.8e-6, 0.9e-6])
+    out = radchain.load(sbv).sweep({"detector.band_max": band_max}, results=["target.magnitude"])
+    for i, b in enumerate(band_max):
+        r = radchain.load(sbv, set={"detector.band_max": float(b)}).run()
+        assert out["target.magnitude"][i] == r["target.magnitude"]  # the same scalar solver: bit for bit
+
+
+def test_thread_count_does_not_change_results(sbv):
+    apertures = np.linspace(0.1, 0.4, 20001)
+    s = radchain.load(sbv)
+    everything = s.sweep({"optics.aperture": apertures}, results=["target.magnitude", "detector.snr"])
+    try:
+        radchain.set_threads(1)
+        one = radchain.load(sbv).sweep({"optics.aperture": apertures}, results=["target.magnitude", "detector.snr"])
+    finally:
+        radchain.set_threads(0)
+    for k in everything:
+        assert np.array_equal(everything[k], one[k]), k
+
+
+def test_sweep_frame(sbv):
+    df = radchain.load(sbv).sweep({"optics.aperture": [0.15, 0.2]}, results=["target.magnitude"], frame=True)
+    assert list(df.columns) == ["optics.aperture", "target.magnitude", "ok"]
+    assert df.attrs["units"] == {"target.magnitude": "1"}
+    assert df["target.magnitude"][0] == pytest.approx(15.5565, abs=1e-4)  # README: 15.5565 vs 15.55 printed
+
+
+def test_failed_solve_is_nan_and_warns(sbv):
+    # a 0.5 mm pupil reaches SNR 5 only for stars brighter than magnitude 5, outside the bracket [5, 25]
+    with pytest.warns(RuntimeWarning, match="point 0 .*target.magnitude"):
+        out = radchain.load(sbv).sweep({"optics.aperture": [0.0005, 0.15]}, results=["target.magnitude"])
+    assert not out["ok"][0] and math.isnan(out["target.magnitude"][0])
+    assert out["ok"][1] and not math.isnan(out["target.magnitude"][1])
+
+
+def test_sweep_errors(sbv):
+    s = radchain.load(sbv)
+    with pytest.raises(radchain.InputError) as caught:
+        s.sweep({"optics.aperture": [0.1, -0.2]})
+    assert caught.value.subject == "optics.aperture[1] = -0.20000000000000001"
+    with pytest.raises(radchain.InputError, match="a \\[\\[solve\\]\\] determines target.magnitude"):
+        s.sweep({"target.magnitude": [14, 15]})
+    with pytest.raises(radchain.InputError, match="did you mean \"detector.snr\""):
+        s.sweep({"optics.aperture": [0.1]}, results=["detector.snrr"])
+    with pytest.raises(radchain.InputError, match="no numeric parameter"):
+        s.sweep({"optics.aperturee": [0.1]})
+    with pytest.raises(ValueError):
+        s.sweep({"optics.aperture": [0.1, 0.2], "detector.qe": [0.1, 0.2, 0.3]})  # shapes do not broadcast

@@ -1,0 +1,89 @@
+"""describe, plugins, compare and catalogue against the command line's own output."""
+import json
+import math
+import re
+
+import pytest
+
+import radchain
+
+
+def test_describe_plugin_lists_the_cli_keys(cli):
+    d = radchain.describe("telescope")
+    text = cli("describe", "telescope").stdout
+    cli_keys = re.findall(r"^  (\w+)\s", text.split("keys:")[1].split("publishes:")[0], re.M)
+    assert [k["key"] for k in d["keys"]] == [k for k in cli_keys if k != ""]
+    aperture = next(k for k in d["keys"] if k["key"] == "aperture")
+    assert aperture["type"] == "quantity" and aperture["si_unit"] == "m" and aperture["required"]
+    assert d["kind"] == "optics" and d["summary"] in text
+    assert [t["name"] for t in d["publishes"]] == re.findall(r"^  (\S+)\s+\[", text.split("publishes:")[1].split("needs:")[0], re.M)
+    assert "aperture" in str(d)
+
+
+def test_describe_kind_and_tables(cli):
+    kind = radchain.describe("criterion")
+    text = cli("describe", "criterion").stdout
+    assert [p["name"] for p in kind["plugins"]] == re.findall(r"^  (\w+)\s", text, re.M)
+    solve = radchain.describe("solve")
+    assert [k["key"] for k in solve["keys"]] == ["unknown", "criterion", "bracket"]
+
+
+def test_plugins_equal_cli_listing(cli):
+    df = radchain.plugins()
+    lines = cli("plugins").stdout.splitlines()[2:-1]
+    assert list(df["name"]) == [line.split()[0] for line in lines]
+    assert list(df["file"]) == [line.split()[-1] for line in lines]
+    assert df["usable"].all()
+    assert {"telescope", "ccd_frame", "snr_threshold", "sun"} <= set(df["name"])
+
+
+def test_compare_equals_cli_compare_json(cli, sbv, tmp_path):
+    other = tmp_path / "sbv-20cm.toml"
+    other.write_text(open(sbv).read().replace('aperture = "15 cm"', 'aperture = "20 cm"'))
+    df = radchain.compare(sbv, str(other))
+    ref = cli.json("compare", sbv, other, "--format", "json")
+    rows = ref["rows"]
+    assert list(df["name"]) == [r["name"] for r in rows]
+    assert list(df["kind"]) == [r["kind"] for r in rows]
+    assert list(df["status"]) == [r["status"] for r in rows]
+    aperture = df[df["name"] == "optics.aperture"].iloc[0]
+    assert aperture["kind"] == "input" and aperture["a_si"] == 0.15 and aperture["b_si"] == 0.2
+    checked = 0
+    for r, (_, row) in zip(rows, df.iterrows()):
+        if row["kind"] == "result" and r["a"] not in (None, "", "nan"):
+            assert row["a_value"] == pytest.approx(float(r["a"]), rel=1e-9), r["name"]
+            assert row["b_value"] == pytest.approx(float(r["b"]), rel=1e-9), r["name"]
+            checked += 1
+    assert checked > 10
+    magnitude = df[df["name"] == "target.magnitude"].iloc[0]
+    assert magnitude["status"] == "differs" and magnitude["delta"] > 0.5
+
+
+def test_compare_sessions_and_tolerance(sbv):
+    a = radchain.load(sbv)
+    b = radchain.load(sbv)
+    same = radchain.compare(a, b)
+    assert (same[same["kind"] == "result"]["status"] == "same").all()
+    assert (same["kind"] == "result").all()  # no input differs
+    b.set("detector.qe", 0.28)
+    df = radchain.compare(a, b, tolerance=1e-6)
+    qe = df[df["name"] == "detector.qe"].iloc[0]
+    assert qe["kind"] == "input" and qe["b_si"] == 0.28
+    assert "EXCEEDS" in set(df["status"])
+
+
+def test_catalogue_equals_cli_catalogue_json(cli, source_dir):
+    folder = str(source_dir / "sensors")
+    df = radchain.catalogue([folder])
+    ref = cli.json("catalogue", folder, "--format", "json")
+    assert list(df.columns) == ref["columns"]
+    assert len(df) == len(ref["rows"]) > 10
+    for r, row in zip(ref["rows"], df.to_dict("records")):
+        for column in ref["columns"]:
+            a, b = r[column], row[column]
+            if a is None:
+                assert b is None or (isinstance(b, float) and math.isnan(b)), (column, a, b)
+            else:
+                assert a == b, (column, a, b)
+    assert df.attrs["exit_code"] == cli("catalogue", folder).returncode
+    assert df.attrs["summary"] == ref.get("summary", "")
