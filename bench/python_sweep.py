@@ -48,3 +48,14 @@ for mode, result in (("solve", "target.magnitude"), ("forward", "detector.snr"))
     assert cpp["checksum"] / (args.repeat + 1) == out[result][points // 2], "C++ and Python computed different values"
     print(f"{mode:>8} ({result}): Python {py * 1e3:8.1f} ms   C++ {cpp['median_s'] * 1e3:8.1f} ms   "
           f"ratio {py / cpp['median_s']:.3f}   (Python runs: {', '.join(f'{r * 1e3:.1f}' for r in runs)} ms)")
+
+# For context: the command line's sweep of the same points (process start, load, solves, CSV to /dev/null).
+cli = build / "radchain"
+if cli.is_file():
+    runs = []
+    for _ in range(3):
+        start = time.perf_counter()
+        subprocess.run([str(cli), "sweep", args.sensor, "--set", f"optics.aperture=15 cm:30 cm:{points}", "--results",
+                        "target.magnitude"], stdout=subprocess.DEVNULL, check=True)
+        runs.append(time.perf_counter() - start)
+    print(f"   radchain sweep (CSV to /dev/null, whole process): {statistics.median(runs) * 1e3:.1f} ms (median of 3)")
