@@ -214,7 +214,10 @@ class Session:
         arrays = _np.broadcast_arrays(*[_np.asarray(v, dtype=_np.float64) for v in parameters.values()])
         shape = arrays[0].shape
         flat = [_np.ascontiguousarray(a.reshape(-1)) for a in arrays]
-        names, units, out, ok, failed, failure = self._native.sweep(keys, flat, list(results or []), not solve)
+        if isinstance(results, str):
+            results = [results]
+        names, units, out, ok, failed, failure = self._native.sweep(keys, flat, [str(r) for r in results or []],
+                                                                    not solve)
         if failed:
             _warnings.warn(f"{failed} of {ok.size} points: {failure}", RuntimeWarning, stacklevel=2)
         columns = {}

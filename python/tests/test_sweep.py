@@ -38,9 +38,12 @@ def test_sweep_equals_cli_sweep(cli, sbv):
     assert np.all(np.diff(out["target.magnitude"]) > 0)  # fainter limits with bigger pupils
 
 
-def test_sweep_point_equals_run_at_that_value(sbv):
+def test_sweep_point_equals_run_at_that_value(cli, sbv):
     apertures = np.array([0.1, 0.17, 0.2, 0.333, 0.5])
     out = radchain.load(sbv).sweep({"optics.aperture": apertures})
+    ref = cli.json("run", sbv, "--set", "optics.aperture=0.2 m", "--format", "json")
+    assert close(out["target.magnitude"][2], ref["solves"][0]["value_si"], 1e-12)
+    assert radchain.load(sbv).sweep({"optics.aperture": [0.2]}, results="detector.snr")["detector.snr"].shape == (1,)
     for i, d in enumerate(apertures):
         s = radchain.load(sbv)
         s.set("optics.aperture", float(d))
