@@ -21,6 +21,26 @@
 // SATURATION (EMVA §2.3, saturation capacity μ_e.sat): the brightest native pixel's charge in one exposure,
 // f_peak S_img,1 + N_tdi (B_native + μ_I t) (f_peak: the PSF's fraction in the pixel it is centred on), over
 // min(μ_e.sat, (2^bits − 1)/K), is detector.peak_pixel_fill; the criterion "unsaturated" fails when it exceeds 1.
+//
+// EXTENDED SCENES (issue 14, item 3: Earth-observation line, TDI and frame cameras). When the optics deliver a
+// focal-plane irradiance E'_λ (a scene radiance through a telescope with a focal length: E' = π L τ (1−ε²)/(4N²)),
+// one native pixel counts, per exposure (line time or frame time t; N_tdi stages summed in the charge domain),
+//   μ_e = N_tdi t p² ∫ E'_λ η(λ) λ/(hc) dλ         = the étendue count A_pixel Ω τ ∫ L_λ η λ/(hc) dλ
+// (EMVA 1288 R4.0 §2.1 μ_p = A E t λ/(hc), eq. 1 μ_e = η μ_p; Ω = π(1−ε²)/(4N²), i.e. A_pixel Ω = A_pupil IFOV²:
+// physics::pixel_projected_solid_angle_sr). The noise of one (b×b binned) pixel over M exposures is the EMVA
+// model with spatial terms (eqs. 5, 6, 18; physics::emva_uniform_scene_variance_e2), SNR = M S₁ / n.
+// The mission convention (Sentinel-2 MRD and User Handbook: "SNR at L_ref" per band; Landsat-8 OLI: SNR at
+// L_typ) states the SNR of one pixel at a band-averaged spectral radiance L_ref in W m-2 sr-1 µm-1. Averaged
+// with the system's response per watt (τ η λ), μ_e = k L_ref for any spectrum, k = N_tdi t p² Ω τ ∫ η λ/(hc) dλ
+// (physics::radiance_responsivity_e). Published: detector.scene_radiance (the scene's L̄ = μ_e/k),
+// detector.reference_radiance (`reference_radiance`, or `reference_reflectance` × L̄/ρ of a reflectance
+// target, or the scene itself), detector.reference_signal_electrons, detector.snr_at_reference,
+// detector.noise_equivalent_radiance NEΔL = n_ref / (dS/dL) = L_ref / SNR_ref,
+// detector.noise_equivalent_reflectance NEΔρ = n_ref / (dS/dρ) = n_ref ρ / S (the scene's sun angle and
+// atmosphere: dL/dρ = L̄/ρ for reflectance_ground, whose path radiance does not enter the signal),
+// detector.saturation_radiance L_sat = (min(μ_e.sat, (2^bits−1)/K) − N_tdi μ_I t) / k, and the scene pixel's
+// fill. Limits: τ is the optics' scalar transmittance (a transmittance_curve is folded into the scene spectrum
+// and then weights the scene's L̄ as well); on axis (no cos⁴ fall-off); path radiance not in the signal.
 #include "radchain/physics/emva1288.hpp"
 #include "radchain/physics/photometry.hpp"
 #include "radchain/physics/psf.hpp"
@@ -73,6 +93,11 @@ const Schema& schema() {
           .described("side n of the n×n window in (binned) pixels (photometry = \"window\")"),
       number("ensquared_energy", "0.8").above(0).at_most(1)
           .described("fraction of the point image in the window (default: from the PSF, else 1)"),
+      quantity("reference_radiance", "W m-2 sr-1 m-1", "108 W m-2 sr-1 um-1").above(0)
+          .described("extended scenes: band-averaged spectral radiance L_ref of the SNR requirement (mission "
+                     "convention, e.g. Sentinel-2 L_ref; default: the scene's own radiance)"),
+      number("reference_reflectance", "0.3").above(0).at_most(1)
+          .described("extended scenes: L_ref as the reflectance of the target's scene (its sun angle, atmosphere)"),
   };
   return s;
 }
@@ -92,7 +117,8 @@ class Emva1288 final : public Stage {
         other_(p.handle("other_noise")), bits_(p.handle("adc_bits")), binning_(p.handle("binning")),
         exposures_(p.handle("exposures")), tdi_(p.handle("tdi_stages")), pitch_(p.handle("pixel_pitch")),
         window_(p.handle("window_pixels")), ensquared_(p.handle("ensquared_energy")),
-        psf_photometry_(p.text("photometry") == "psf") {
+        psf_photometry_(p.text("photometry") == "psf"), reference_radiance_(p.handle("reference_radiance")),
+        reference_reflectance_(p.handle("reference_reflectance")) {
     if (!(p.get("band_max") > p.get("band_min"))) p.reject("band_max", "must be larger than band_min");
     if (psf_photometry_ && p.given("window_pixels"))
       p.reject("window_pixels", "is used only with photometry = \"window\" (PSF-weighted photometry uses n_eff pixels)");
@@ -102,12 +128,22 @@ class Emva1288 final : public Stage {
 
   void prepare(Context& c) override {
     const Radiation& signal = c.light.signal;
-    if (signal.form != RadiationForm::focal_power) c.refuse_form("a point image's power (a point target)", signal.form);
+    extended_ = signal.form == RadiationForm::focal_irradiance;
+    if (signal.form != RadiationForm::focal_power && !extended_)
+      c.refuse_form("a point image's power (a point target) or a focal-plane irradiance (an extended scene)", signal.form);
+    if (!extended_) {
+      for (const char* key : {"reference_radiance", "reference_reflectance"})
+        if (params_.given(key)) params_.reject(key, "is used only for an extended scene (a ground target through optics)");
+    }
     const double lo = params_.get("band_min"), hi = params_.get("band_max");
     const Spectrum* qe_curve = params_.has("qe_curve") ? &params_.spectrum("qe_curve") : nullptr;
     if (qe_curve && (lo < qe_curve->min_wavelength_m() || hi > qe_curve->max_wavelength_m()))
       params_.reject(lo < qe_curve->min_wavelength_m() ? "band_min" : "band_max",
                      "the band reaches outside the qe_curve's table (" + nm_range(*qe_curve) + "): it would count 0 there");
+    if (extended_) {
+      prepare_extended(c, lo, hi, qe_curve);
+      return;
+    }
     // EMVA eq. 1 in spectral form: photoelectrons per second per unit signal scale.
     photon_rate_per_scale_ = physics::photon_rate(signal.spectrum, lo, hi, qe_curve);
     // AB magnitude 0 (flat f_ν = 3631 Jy) through this detector: n_λ = f_ν/(hλ), electrons s-1 m-2 (times qe).
@@ -172,6 +208,10 @@ class Emva1288 final : public Stage {
   }
 
   void evaluate(Context& c) override {
+    if (extended_) {
+      evaluate_extended(c);
+      return;
+    }
     ScalarAccess a(c);
     auto opt = [&](const std::optional<ResultId>& id) { return id ? a.value(*id) : 0.0; };
     const double t = *time_, qe = *qe_, gain = *gain_, pitch = *pitch_;
@@ -258,11 +298,146 @@ class Emva1288 final : public Stage {
  private:
   double ab_zero_f_nu_rate() const { return ab_electrons_per_m2_s_; }
 
+  // ---- extended scenes (issue 14, item 3) ----
+  void prepare_extended(Context& c, double lo, double hi, const Spectrum* qe_curve) {
+    for (const char* key : {"window_pixels", "ensquared_energy", "photometry"})
+      if (params_.given(key)) params_.reject(key, "is used only for a point image (the target here is an extended scene)");
+    if (params_.given("reference_radiance") && params_.given("reference_reflectance"))
+      params_.reject("reference_reflectance", "give the reference as reference_radiance or as reference_reflectance, not both");
+    // Electrons s-1 per m² of focal plane per unit signal scale (EMVA §2.1 and eq. 1 in spectral form, before qe).
+    photon_rate_per_scale_ = physics::photon_rate(c.light.signal.spectrum, lo, hi, qe_curve);
+    // ∫_band η(λ) λ/(hc) dλ: electrons s-1 m-2 of a flat 1 W m-2 m-1 (before qe and the étendue).
+    const Spectrum flat = Spectrum::sampled(Eigen::ArrayXd::LinSpaced(2001, lo, hi), [](double) { return 1.0; },
+                                            "W m-2 m-1");
+    flat_photon_integral_ = physics::photon_rate(flat, lo, hi, qe_curve);
+    f_number_ = c.find(vocabulary::optics_f_number);
+    obscuration_ = c.find(vocabulary::optics_obscuration);
+    transmittance_ = c.find(vocabulary::optics_transmittance);
+    if (!f_number_)
+      params_.reject("pixel_pitch", "an extended scene needs the optics' f-number (a telescope with a focal_length)");
+    reflectance_ = c.find(vocabulary::target_reflectance);
+    if (params_.given("reference_reflectance") && !reflectance_)
+      params_.reject("reference_reflectance", "needs a reflectance target (target plugin \"reflectance_ground\")");
+    reference_given_ = params_.given("reference_radiance");
+    reference_from_reflectance_ = params_.given("reference_reflectance");
+    const char* ref_how = params_.given("reference_radiance")      ? "input L_ref"
+                          : params_.given("reference_reflectance") ? "ρ_ref × L̄_scene / ρ (the target's sun and atmosphere)"
+                                                                   : "L̄_scene (no reference given: the scene itself)";
+
+    id_signal_ = c.declare(vocabulary::detector_signal_electrons,
+                           "M b² N_tdi t p² ∫ E'_λ η λ/(hc) dλ: the scene in one (binned) pixel (EMVA §2.1, eq. 1)", "e-");
+    id_noise_ = c.declare(vocabulary::detector_noise_electrons,
+                          "√(M (S₁ + b² v_t) + M² (b² σ_o² + s_g² S₁²/b²)) (EMVA 1288 eqs. 5, 6, 18)", "e-");
+    id_snr_ = c.declare(vocabulary::detector_snr, "M S₁ / noise: the scene's pixel (EMVA 1288 eq. 6)");
+    id_time_ = c.declare(vocabulary::detector_integration_time, "input t (line or frame time of one TDI stage)", "s");
+    id_fill_ = c.declare(vocabulary::detector_peak_pixel_fill, "scene pixel (μ_e + N_tdi μ_I t) / min(μ_e.sat, (2^bits−1)/K)",
+                         "%");
+    id_peak_ = c.declare(vocabulary::detector_peak_pixel_electrons, "μ_e + N_tdi μ_I t of one native pixel, one exposure",
+                         "e-");
+    id_saturation_ = c.declare(vocabulary::detector_saturation_capacity, "min(μ_e.sat, (2^bits − 1)/K)", "e-");
+    id_gain_ = c.declare(vocabulary::detector_system_gain, "input K", "DN/e-");
+    id_tdi_ = c.declare(vocabulary::detector_tdi_stages, "input N_tdi");
+    id_pitch_ = c.declare(vocabulary::detector_pixel_pitch, "input p (native)", "um");
+    id_scene_radiance_ = c.declare(vocabulary::detector_scene_radiance,
+                                   "L̄ = μ_e / k: the scene's band-averaged at-aperture radiance", "W m-2 sr-1 um-1");
+    id_reference_radiance_ = c.declare(vocabulary::detector_reference_radiance, ref_how, "W m-2 sr-1 um-1");
+    id_reference_signal_ = c.declare(vocabulary::detector_reference_signal_electrons,
+                                     "M b² k L_ref (k = N_tdi t p² Ω τ ∫ η λ/(hc) dλ)", "e-");
+    id_reference_snr_ = c.declare(vocabulary::detector_snr_at_reference,
+                                  "M S₁(L_ref) / noise(L_ref) (EMVA 1288 eq. 6; mission convention: SNR at L_ref)");
+    id_nedl_ = c.declare(vocabulary::detector_noise_equivalent_radiance, "noise(L_ref) / (dS/dL) = L_ref / SNR_ref",
+                         "W m-2 sr-1 um-1");
+    if (reflectance_)
+      id_nedrho_ = c.declare(vocabulary::detector_noise_equivalent_reflectance,
+                             "noise(L_ref) / (dS/dρ) = noise(L_ref) ρ / S (at the target's sun angle)");
+    id_saturation_radiance_ = c.declare(vocabulary::detector_saturation_radiance,
+                                        "(min(μ_e.sat, (2^bits−1)/K) − N_tdi μ_I t) / k", "W m-2 sr-1 um-1");
+    id_solid_angle_ = c.declare("pixel_solid_angle", "sr", "Ω = π (1 − ε²) / (4 N²): A_pixel Ω = A_pupil IFOV²");
+    id_etendue_ = c.declare("pixel_etendue", "m2 sr", "A_pixel Ω = p² π (1 − ε²) / (4 N²)", "um2 sr");
+    id_responsivity_ = c.declare("radiance_responsivity", "electron m2 sr m W-1",
+                                 "k: electrons of one native pixel per exposure per unit band-averaged radiance",
+                                 "e- / (W m-2 sr-1 um-1)");
+    id_qe_integral_ = c.declare("qe_photon_integral", "m2 W-1 s-1",
+                                "qe ∫_band η(λ) λ/(hc) dλ (electrons s-1 per W m-2 m-1 of a flat spectrum)");
+    id_quant_ = c.declare("quantisation_noise", "electron", "σ_q/K = 1/(√12 K) per pixel (EMVA eq. 5)", "e-");
+    id_dark_ = c.declare("dark_electrons", "electron", "b² N_tdi μ_I t per frame", "e-");
+    id_read_noise_ = c.declare("read_noise", "electron", "√(b² σ_d0²) per frame", "e-");
+    id_shot_noise_ = c.declare("shot_noise", "electron", "√S over M frames", "e-");
+    id_prnu_noise_ = c.declare("prnu_noise", "electron", "M s_g S₁ / b", "e-");
+    id_reference_noise_ = c.declare("reference_noise_electrons", "electron", "noise at L_ref", "e-");
+    id_dynamic_range_ = c.declare("dynamic_range", "1", "L_sat / NEΔL(L→0): saturation over the dark noise floor");
+  }
+
+  void evaluate_extended(Context& c) {
+    ScalarAccess a(c);
+    const double t = *time_, qe = *qe_, gain = *gain_, pitch = *pitch_;
+    const double b = *binning_, m = *exposures_, tdi = *tdi_;
+    const double omega = physics::pixel_projected_solid_angle_sr(a.value(*f_number_),
+                                                                 obscuration_ ? a.value(*obscuration_) : 0.0);
+    const double tau = transmittance_ ? a.value(*transmittance_) : 1.0;
+    const double k = physics::radiance_responsivity_e(tdi, t, pitch, omega, tau, qe * flat_photon_integral_);
+    // The scene: one native pixel, one exposure (the focal irradiance already carries Ω τ).
+    const double scene_native = a.signal_scale() * qe * photon_rate_per_scale_ * t * tdi * pitch * pitch;
+    const double scene_radiance = scene_native / k;
+    double reference = scene_radiance;
+    if (reference_given_) reference = *reference_radiance_;
+    else if (reference_from_reflectance_) reference = *reference_reflectance_ * scene_radiance / a.value(*reflectance_);
+
+    const double dark_native = tdi * *dark_current_ * t;
+    const double quant_var = physics::emva_quantisation_variance_e2(gain);
+    const double floor_native = *dark_noise_ * *dark_noise_ + quant_var + *other_ * *other_ + dark_native;
+    auto noise_of = [&](double signal1) {
+      return std::sqrt(physics::emva_uniform_scene_variance_e2(signal1, floor_native, *dsnu_, *prnu_, b, m));
+    };
+    const double signal1 = b * b * scene_native, reference1 = b * b * k * reference;
+    const double noise = noise_of(signal1), reference_noise = noise_of(reference1);
+
+    const double levels = static_cast<double>(std::uint64_t{1} << static_cast<int>(*bits_));
+    const double capacity = std::min(*saturation_, (levels - 1.0) / gain);
+    const double saturation_radiance = physics::saturation_radiance(capacity, dark_native, k);
+
+    a.set(id_signal_, m * signal1);
+    a.set(id_noise_, noise);
+    a.set(id_snr_, m * signal1 / noise);
+    a.set(id_time_, t);
+    a.set(id_fill_, (scene_native + dark_native) / capacity);
+    a.set(id_peak_, scene_native + dark_native);
+    a.set(id_saturation_, capacity);
+    a.set(id_scene_radiance_, scene_radiance);
+    a.set(id_reference_radiance_, reference);
+    a.set(id_reference_signal_, m * reference1);
+    a.set(id_reference_snr_, m * reference1 / reference_noise);
+    a.set(id_nedl_, reference_noise / (m * b * b * k));
+    if (id_nedrho_) a.set(*id_nedrho_, reference_noise * a.value(*reflectance_) / (m * signal1));
+    a.set(id_saturation_radiance_, saturation_radiance);
+    if (!a.full_detail()) return;
+    a.set(id_gain_, gain);
+    a.set(id_tdi_, tdi);
+    a.set(id_pitch_, pitch);
+    a.set(id_solid_angle_, omega);
+    a.set(id_etendue_, pitch * pitch * omega);
+    a.set(id_responsivity_, k);
+    a.set(id_qe_integral_, qe * flat_photon_integral_);
+    a.set(id_quant_, std::sqrt(quant_var));
+    a.set(id_dark_, b * b * dark_native);
+    a.set(id_read_noise_, b * *dark_noise_);
+    a.set(id_shot_noise_, std::sqrt(m * signal1));
+    a.set(id_prnu_noise_, m * *prnu_ * signal1 / b);
+    a.set(id_reference_noise_, reference_noise);
+    a.set(id_dynamic_range_, saturation_radiance * m * b * b * k / noise_of(0.0));
+  }
+
   const Params& params_;
   const double *qe_, *time_, *gain_, *dark_noise_, *saturation_, *dark_current_, *prnu_, *dsnu_, *other_, *bits_,
       *binning_, *exposures_, *tdi_, *pitch_, *window_, *ensquared_;
   bool psf_photometry_;
-  double photon_rate_per_scale_ = 0, ab_electrons_per_m2_s_ = 0;
+  bool extended_ = false, reference_given_ = false, reference_from_reflectance_ = false;
+  const double *reference_radiance_, *reference_reflectance_;
+  double photon_rate_per_scale_ = 0, ab_electrons_per_m2_s_ = 0, flat_photon_integral_ = 0;
+  std::optional<ResultId> reflectance_, id_nedrho_;
+  ResultId id_pitch_{}, id_scene_radiance_{}, id_reference_radiance_{}, id_reference_signal_{}, id_reference_snr_{},
+      id_nedl_{}, id_saturation_radiance_{}, id_solid_angle_{}, id_etendue_{}, id_responsivity_{}, id_qe_integral_{},
+      id_reference_noise_{}, id_dynamic_range_{};
   std::optional<ResultId> psf_wavelength_, gaussian_fwhm_, f_number_, obscuration_, focal_length_, aperture_, area_,
       transmittance_, seeing_, sky_, band_magnitude_, id_zero_point_;
   ResultId id_image_{}, id_signal_{}, id_noise_{}, id_snr_{}, id_time_{}, id_pixels_{}, id_ensquared_{}, id_neff_{},
@@ -274,8 +449,10 @@ class Emva1288 final : public Stage {
 
 RADCHAIN_PLUGIN(Emva1288, {
     .summary = "CMOS/CCD camera from its EMVA 1288 datasheet: gain, dark noise, DSNU/PRNU, saturation, binning, "
-               "co-added frames, TDI; window or PSF-weighted (n_eff) photometry; sky by étendue",
-    .reference = "EMVA Standard 1288 Release 4.0 Linear (2021) eqs. 1-6, 18, 29; King 1983 (n_eff); LSST SMTN-002",
+               "co-added frames, TDI; window or PSF-weighted (n_eff) photometry; sky by étendue; extended scenes "
+               "by étendue: SNR at L_ref, NEΔL, NEΔρ, saturation radiance",
+    .reference = "EMVA Standard 1288 Release 4.0 Linear (2021) eqs. 1-6, 18, 29; King 1983 (n_eff); LSST SMTN-002; "
+                 "SNR at L_ref per band: ESA Sentinel-2 User Handbook (2015)",
     .schema = schema,
     .publishes = {vocabulary::detector_signal_electrons, vocabulary::detector_image_electrons,
                   vocabulary::detector_noise_electrons, vocabulary::detector_snr, vocabulary::detector_integration_time,
@@ -283,11 +460,14 @@ RADCHAIN_PLUGIN(Emva1288, {
                   vocabulary::detector_sky_electrons_per_pixel, vocabulary::detector_peak_pixel_fill,
                   vocabulary::detector_peak_pixel_electrons, vocabulary::detector_saturation_capacity,
                   vocabulary::detector_noise_equivalent_area, vocabulary::detector_system_gain,
-                  vocabulary::detector_tdi_stages},
+                  vocabulary::detector_tdi_stages, vocabulary::detector_pixel_pitch, vocabulary::detector_scene_radiance,
+                  vocabulary::detector_reference_radiance, vocabulary::detector_reference_signal_electrons,
+                  vocabulary::detector_snr_at_reference, vocabulary::detector_noise_equivalent_radiance,
+                  vocabulary::detector_noise_equivalent_reflectance, vocabulary::detector_saturation_radiance},
     .needs = {if_present(vocabulary::optics_psf_wavelength), if_present(vocabulary::optics_gaussian_fwhm),
               if_present(vocabulary::optics_f_number), if_present(vocabulary::optics_obscuration),
               if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_aperture),
               if_present(vocabulary::optics_collecting_area), if_present(vocabulary::optics_transmittance),
               if_present(vocabulary::atmosphere_seeing_fwhm), if_present(vocabulary::atmosphere_sky_brightness),
-              if_present(vocabulary::target_band_magnitude)},
+              if_present(vocabulary::target_band_magnitude), if_present(vocabulary::target_reflectance)},
 })

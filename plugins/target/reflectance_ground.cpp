@@ -41,6 +41,7 @@ class ReflectanceGround final : public Stage {
     c.light.signal = Radiation{RadiationForm::scene_radiance, per_reflectance, 1.0};
     c.light.background = Radiation{RadiationForm::scene_radiance, per_reflectance, 1.0};
     id_cos_ = c.declare("cos_solar_zenith", "1", "cos θ_s");
+    id_rho_ = c.declare(vocabulary::target_reflectance, "input ρ (the signal is ∝ ρ: dL/dρ = L/ρ, for NEΔρ)");
     if (c.light.has_report_band()) {
       const double lo = c.light.report_band_min_m, hi = c.light.report_band_max_m;
       per_reflectance_in_band_ = per_reflectance.integral(lo, hi);
@@ -60,6 +61,7 @@ class ReflectanceGround final : public Stage {
     c.light.signal.scale = common * *rho_;
     c.light.background.scale = common * rho_b;
     c.results.set(id_cos_, mu);
+    c.results.set(id_rho_, *rho_);
     if (id_radiance_) {
       const double surface = per_reflectance_in_band_ * common * *rho_;
       const double path = path_in_band_;  // already at the sensor: the atmosphere states it so
@@ -73,7 +75,7 @@ class ReflectanceGround final : public Stage {
   const Params& params_;
   const double *rho_, *zenith_, *background_rho_;
   double per_reflectance_in_band_ = 0, path_in_band_ = 0;
-  ResultId id_cos_{};
+  ResultId id_cos_{}, id_rho_{};
   std::optional<ResultId> id_radiance_, id_surface_, id_path_;
 };
 
@@ -83,4 +85,5 @@ RADCHAIN_PLUGIN(ReflectanceGround, {
     .summary = "Lambertian ground of reflectance ρ under the Sun at zenith angle θ_s: at-aperture radiance",
     .reference = "Schott, Remote Sensing: The Image Chain Approach 2nd ed. (2007) §4.1",
     .schema = schema,
+    .publishes = {vocabulary::target_reflectance},
 })

@@ -74,6 +74,7 @@ const Case cases[] = {
     {"reflectance_above_one"},
     {"band_outside_sed"},
     {"band_outside_qe_curve"},
+    {"reference_radiance_negative"},
 };
 
 // How a case reads in test names and ctest listings (instead of a byte dump).

@@ -154,6 +154,25 @@ inline constexpr Term criterion_gsd_along_track{"criteria.*.gsd_along_track", "m
                                                 "along-track ground sample distance at the look"};
 inline constexpr Term criterion_niirs{"criteria.*.niirs", "1", "predicted NIIRS (General Image Quality Equation)"};
 inline constexpr Term criterion_rer{"criteria.*.rer", "1", "relative edge response of the system MTF (per sample)"};
+// Radiometry of Earth-observation cameras (issue 14, item 3): an extended scene counted by étendue in a
+// datasheet detector; the SNR at a reference radiance as mission requirements state it (band-averaged
+// spectral radiance, W m-2 sr-1 µm-1 in the documents; SI here)
+inline constexpr Term target_reflectance{"target.reflectance", "1", "Lambertian reflectance ρ of a ground target"};
+inline constexpr Term detector_scene_radiance{"detector.scene_radiance", "W m-2 sr-1 m-1",
+                                              "the scene's at-aperture spectral radiance averaged over the band (RSR-weighted)"};
+inline constexpr Term detector_reference_radiance{"detector.reference_radiance", "W m-2 sr-1 m-1",
+                                                  "band-averaged spectral radiance L_ref at which the SNR is stated"};
+inline constexpr Term detector_reference_signal_electrons{"detector.reference_signal_electrons", "electron",
+                                                          "signal electrons of one pixel at L_ref"};
+inline constexpr Term detector_snr_at_reference{"detector.snr_at_reference", "1",
+                                                "signal-to-noise ratio of one pixel at L_ref"};
+inline constexpr Term detector_noise_equivalent_radiance{"detector.noise_equivalent_radiance", "W m-2 sr-1 m-1",
+                                                         "NEΔL at L_ref: the radiance change equal to the noise (L_ref/SNR)"};
+inline constexpr Term detector_noise_equivalent_reflectance{"detector.noise_equivalent_reflectance", "1",
+                                                            "NEΔρ at L_ref: the reflectance change equal to the noise, "
+                                                            "at the target's sun angle"};
+inline constexpr Term detector_saturation_radiance{"detector.saturation_radiance", "W m-2 sr-1 m-1",
+                                                   "band-averaged spectral radiance that fills the well or the ADC"};
 
 // Every term, for look-ups by name (describe, the check that a plugin does not declare a term as a plain string).
 inline constexpr std::array all{
@@ -173,6 +192,10 @@ inline constexpr std::array all{
     platform_roll, platform_pitch, platform_slant_range, platform_view_zenith_angle, platform_earth_radius,
     detector_pixel_pitch, criterion_gsd_nadir, criterion_gsd_across_track, criterion_gsd_along_track,
     criterion_niirs, criterion_rer,
+    // Radiometry of Earth-observation cameras (issue 14, item 3)
+    target_reflectance, detector_scene_radiance, detector_reference_radiance, detector_reference_signal_electrons,
+    detector_snr_at_reference, detector_noise_equivalent_radiance, detector_noise_equivalent_reflectance,
+    detector_saturation_radiance,
     // Datasheet detectors and telescopes (issue 13)
     detector_peak_pixel_fill, detector_saturation_capacity, detector_peak_pixel_electrons,
     detector_noise_equivalent_area, detector_system_gain, detector_tdi_stages, target_zero_point_photon_rate,

@@ -16,6 +16,7 @@
 //   so n_eff = 1 / Σ f_i²  (King 1983, PASP 95, 163; LSST SMTN-002 §"Noise-equivalent number of pixels";
 //   Ivezić et al. 2019, ApJ 873, 111, eq. 6 footnote). A Gaussian of FWHM θ in pixels gives n_eff → 2.266 θ²
 //   (= 4π σ²) when θ ≫ 1 pixel; SMTN-002 uses n_eff = 2.266 (FWHM_eff / pixel scale)².
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -58,6 +59,51 @@ inline double gaussian_peak_pixel_fraction(double fwhm_px) {
   const double sigma = fwhm_px / (2.0 * std::sqrt(2.0 * std::numbers::ln2));
   const double g = gaussian_pixel_fraction(0, sigma);
   return g * g;
+}
+
+// ---- Extended scenes (issue 14, item 3): a pixel of an Earth-observation camera looking at a uniform scene ----
+// Étendue of one pixel: a pixel of area p² on axis, behind a circular pupil of f-number N (object at infinity),
+// sees the pupil under the projected solid angle Ω = π/(4N²) (1 − ε²) for a central obscuration ε, so
+//   A_pixel Ω = p² π (1 − ε²) / (4 N²)  ≡  A_pupil IFOV² = π D²/4 (1 − ε²) (p/f')²
+// (the camera equation E' = π L τ (1 − ε²) / (4 N²) that the telescope plugin applies, Kolobrodov 1996 eq. 5,
+// times the pixel area; on axis, no cos⁴ fall-off).
+inline double pixel_projected_solid_angle_sr(double f_number, double obscuration = 0.0) {
+  return std::numbers::pi * (1.0 - obscuration * obscuration) / (4.0 * f_number * f_number);
+}
+
+// Electrons of one native pixel in one exposure for a scene of spectral radiance L_λ constant over the band:
+//   μ_e = N_tdi t p² Ω τ ∫ L_λ η(λ) λ/(hc) dλ = L · k,   k = N_tdi t p² Ω τ ∫ η(λ) λ/(hc) dλ
+// (EMVA 1288 §2.1: μ_p = A E t_exp λ/(hc) photons on a pixel of area A under irradiance E, and eq. 1, μ_e = η μ_p,
+// in spectral form; E = Ω τ L on the focal plane; TDI sums N_tdi exposures in the charge domain). `qe_photon_integral` is
+// ∫_band η(λ) λ/(hc) dλ in electrons s-1 per (W m-2 m-1). With a band-averaged radiance as missions state it,
+// L̄ = ∫ L_λ R(λ) dλ / ∫ R(λ) dλ with the system's response per watt R ∝ τ η λ, the same k holds for any scene
+// spectrum: μ_e = k L̄ (the mission convention: Sentinel-2 L_ref, Landsat-8 L_typ are band-averaged radiances).
+inline double radiance_responsivity_e(double tdi_stages, double exposure_s, double pitch_m, double solid_angle_sr,
+                                      double transmittance, double qe_photon_integral) {
+  return tdi_stages * exposure_s * pitch_m * pitch_m * solid_angle_sr * transmittance * qe_photon_integral;
+}
+
+// Noise variance of one b×b binned pixel over M co-added exposures for a uniform scene (EMVA 1288 eqs. 5, 6, 18):
+//   temporal, one exposure:  S₁ + b² [N_tdi μ_I t + σ_d0² + σ_q²/K² + σ_other²]   (shot noise of signal and dark,
+//                            read noise of each of the b² native pixels once: charge-domain TDI reads once)
+//   spatial (repeats in every exposure, adds in amplitude over M): b² σ_DSNU² + s_g² S₁²/b²
+//                            (PRNU of the b² native pixels, each carrying S₁/b², independent)
+//   n² = M (S₁ + v_t) + M² (v_s + s_g² S₁²/b²)
+// `signal1_e` is S₁ (binned pixel, one exposure); `floor_native_e2` is the native pixel's σ_d0² + σ_q²/K² +
+// σ_other² + N_tdi μ_I t (the variance at zero signal, dark shot noise included).
+inline double emva_uniform_scene_variance_e2(double signal1_e, double floor_native_e2, double dsnu_e, double prnu,
+                                             double binning, double exposures) {
+  const double b2 = binning * binning;
+  const double temporal = signal1_e + b2 * floor_native_e2;
+  const double spatial = b2 * dsnu_e * dsnu_e + prnu * prnu * signal1_e * signal1_e / b2;
+  return exposures * temporal + exposures * exposures * spatial;
+}
+
+// The band-averaged radiance that fills the pixel: the smaller of the saturation capacity μ_e.sat (EMVA 1288 §2.3)
+// and the ADC's last code (2^bits − 1)/K, less the dark charge N_tdi μ_I t, over the responsivity k (e- per unit
+// radiance). 0 when the dark charge alone fills it.
+inline double saturation_radiance(double capacity_e, double dark_e, double responsivity_e_per_radiance) {
+  return std::max(0.0, capacity_e - dark_e) / responsivity_e_per_radiance;
 }
 
 // FWHM of the diffraction core of an annular pupil approximated as a Gaussian: 1.028 λ/D for a clear pupil
