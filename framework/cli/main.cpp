@@ -74,6 +74,7 @@ int main(int argc, char** argv) {
   auto* run_cmd = app.add_subcommand("run", "evaluate one sensor file forward, perform its solves, check [expected]");
   cli::add_sensor(run_cmd, run.sensor);
   cli::add_no_solve(run_cmd, run.sensor.no_solve);
+  cli::add_solver(run_cmd, run.sensor.solver);
   run_cmd->add_option("--format", run.format, "text or json")->check(CLI::IsMember({"text", "json"}));
 
   cli::CatalogueCommand catalogue;
@@ -83,6 +84,7 @@ int main(int argc, char** argv) {
   cat_cmd->add_option("--results", catalogue.results, "more results to show per sensor (comma-separated)")->delimiter(',');
   cli::add_output(cat_cmd, catalogue.output, "text (default), csv or json");
   cli::add_no_solve(cat_cmd, catalogue.no_solve);
+  cli::add_solver(cat_cmd, catalogue.solver);
   cli::add_batch(cat_cmd, catalogue.batch);
 
   cli::CompareCommand compare;
@@ -105,6 +107,7 @@ int main(int argc, char** argv) {
   cli::add_output(sweep_cmd, sweep.output, "csv (default), text or json");
   cli::add_batch(sweep_cmd, sweep.batch);
   cli::add_no_solve(sweep_cmd, sweep.sensor.no_solve);
+  cli::add_solver(sweep_cmd, sweep.sensor.solver);
   sweep_cmd->add_flag("--allow-large", sweep.allow_large, "run a grid of more than 10^8 points (refused otherwise)");
 
   cli::MtfCommand mtf;

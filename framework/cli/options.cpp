@@ -18,6 +18,12 @@ void add_no_solve(CLI::App* command, bool& no_solve) {
   command->add_flag("--no-solve", no_solve, "evaluate forward only: skip the [[solve]] entries (the unknowns keep their values)");
 }
 
+void add_solver(CLI::App* command, std::string& solver) {
+  command->add_option("--solver", solver,
+                      "auto: closed form where the chain declares it (checked), else bracketing; root: always bracketing")
+      ->check(CLI::IsMember({"auto", "root"}));
+}
+
 void add_output(CLI::App* command, Output& output, const std::string& formats) {
   command->add_option("--out", output.out, "write to this file instead of stdout (.csv/.json/.txt also set the format)");
   command->add_option("--format", output.format, formats);

@@ -19,6 +19,7 @@ struct SensorArgs {
   std::string sensor;              // the sensor TOML file
   std::vector<std::string> sets;   // --set section.key=value (repeatable)
   bool no_solve = false;           // --no-solve: forward only, the [[solve]] entries skipped
+  std::string solver = "auto";     // --solver auto|root (run, sweep)
 };
 
 struct Output {
@@ -41,6 +42,7 @@ struct CatalogueCommand {
   std::vector<std::string> inputs;
   std::vector<std::string> sets;
   bool no_solve = false;
+  std::string solver = "auto";
   std::vector<std::string> results;
   Output output;
   Batch batch;
@@ -105,6 +107,7 @@ inline constexpr const char* set_help = "override a key: section.key=value (repe
 void add_sets(CLI::App* command, std::vector<std::string>& sets, const std::string& help = set_help);
 void add_sensor(CLI::App* command, SensorArgs& sensor, const std::string& help = set_help);  // SENSOR and --set
 void add_no_solve(CLI::App* command, bool& no_solve);
+void add_solver(CLI::App* command, std::string& solver);
 void add_output(CLI::App* command, Output& output, const std::string& formats);
 void add_batch(CLI::App* command, Batch& batch);
 void add_seed(CLI::App* command, std::uint64_t& seed);

@@ -49,6 +49,7 @@ void warn_about_solved_overrides(const std::vector<SolveSpec>& solves, const std
 Chain load_sensor_of(const SensorArgs& args) {
   const std::vector<Override> overrides = parse_overrides(args.sets);
   Chain chain = load_sensor(args.sensor, overrides);
+  chain.solver = args.solver == "root" ? SolverChoice::root : SolverChoice::automatic;
   if (args.no_solve)
     chain.solves.clear();
   else

@@ -86,4 +86,5 @@ RADCHAIN_PLUGIN(GroundResolution, {
     .needs = {vocabulary::platform_altitude, vocabulary::platform_ground_speed, vocabulary::platform_tilt,
               vocabulary::optics_focal_length, vocabulary::detector_system_element, vocabulary::detector_line_length,
               vocabulary::detector_integration_time},
+    .inverse = InverseForm::power_law,
 })

@@ -124,4 +124,5 @@ RADCHAIN_PLUGIN(GsdRequirement, {
               if_present(vocabulary::platform_roll), if_present(vocabulary::platform_pitch),
               if_present(vocabulary::platform_earth_radius), vocabulary::optics_focal_length,
               if_present(vocabulary::detector_line_length), if_present(vocabulary::detector_pixel_pitch)},
+    .inverse = InverseForm::power_law,
 })

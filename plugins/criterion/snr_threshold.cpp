@@ -97,4 +97,5 @@ RADCHAIN_PLUGIN(SnrThreshold, {
     .schema = schema,
     .publishes = {vocabulary::criterion_threshold, vocabulary::criterion_margin},
     .needs = {vocabulary::detector_snr},
+    .inverse = InverseForm::noise_equation,
 })

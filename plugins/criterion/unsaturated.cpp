@@ -54,4 +54,5 @@ RADCHAIN_PLUGIN(Unsaturated, {
     .schema = schema,
     .publishes = {vocabulary::criterion_margin},
     .needs = {vocabulary::detector_peak_pixel_fill},
+    .inverse = InverseForm::power_law,
 })

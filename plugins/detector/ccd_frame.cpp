@@ -32,7 +32,7 @@ const Schema& schema() {
           .described("spectral quantum efficiency η(λ) (optional)"),
       quantity("band_min", "m", "0.3 um").needed().above(0).affects_spectrum().described("detector band lower limit λ1"),
       quantity("band_max", "m", "0.9 um").needed().above(0).affects_spectrum().described("detector band upper limit λ2"),
-      quantity("integration_time", "s", "0.625 s").needed().above(0).described("frame integration time t"),
+      quantity("integration_time", "s", "0.625 s").needed().above(0).scales(Scaling::power_law).described("frame integration time t"),
       quantity("full_well", "electron", "1e5 e-").needed().above(0).described("potential well depth n_well"),
       integer("adc_bits", "12").needed().at_least(1).at_most(32).described("ADC resolution N (bits)"),
       quantity("dark_rate", "electron/s", "18 e-/s").fallback("0 e-/s").at_least(0)
@@ -56,6 +56,10 @@ class CcdFrame final : public LaneStage<CcdFrame> {
   friend class LaneStage<CcdFrame>;  // calls compute()
 
  public:
+  // Signal, sky, dark ∝ their factors; read and quantisation constant. An Airy PSF's ensquared energy depends on
+  // the f-number: not a power law of D or f' then.
+  bool power_law() const override { return ensquared_entry_.present || !psf_wavelength_; }
+
   explicit CcdFrame(const Params& p)
       : params_(p), qe_(p.handle("qe")), time_(p.handle("integration_time")), well_(p.handle("full_well")),
         bits_(p.handle("adc_bits")), dark_(p.handle("dark_rate")), read_(p.handle("read_noise")),

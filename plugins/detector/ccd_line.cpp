@@ -55,6 +55,9 @@ double c2_of(const std::string& convention) {
 
 class CcdLine final : public Stage {
  public:
+  // Signal ∝ the light's scale; threshold, element and line from the inputs: SNR = signal / threshold (eq. 5).
+  bool power_law() const override { return true; }
+
   explicit CcdLine(const Params& p)
       : params_(p), pitch_(p.handle("pixel_pitch")), element_(p.handle("element_size")),
         count_(p.handle("element_count")), clock_(p.handle("clock")), pinned_time_(p.handle("integration_time")),

@@ -18,6 +18,8 @@ const Schema& schema() {
 
 class PixelArray final : public Stage {
  public:
+  bool power_law() const override { return true; }  // pitch, count, time: inputs passed on
+
   explicit PixelArray(const Params& p)
       : params_(p), pitch_(p.handle("pixel_pitch")), count_(p.handle("pixel_count")), time_(p.handle("integration_time")) {}
 

@@ -17,14 +17,14 @@ using namespace radchain;
 
 const Schema& schema() {
   static const Schema s = {
-      quantity("aperture", "m", "15 cm").needed().above(0).at_most(100).described("entrance pupil diameter D"),
+      quantity("aperture", "m", "15 cm").needed().above(0).at_most(100).scales(Scaling::power_law).described("entrance pupil diameter D"),
       number("obscuration", "0.3").fallback("0").at_least(0).below(1)
           .described("central obscuration, linear ratio ε (collecting area × (1 - ε²))"),
       number("transmittance", "0.56").fallback("1").above(0).at_most(1)
           .described("optical transmittance τ (in-band average; multiplies any transmittance_curve)"),
       spectrum_file("transmittance_curve", "1", "optics_transmittance.csv")
           .described("spectral transmittance τ(λ), multiplied into the signal spectrum"),
-      quantity("focal_length", "m", "832 mm").above(0).at_most(1000)
+      quantity("focal_length", "m", "832 mm").above(0).at_most(1000).scales(Scaling::power_law)
           .described("effective focal length f' (needed for extended scenes and pixel geometry)"),
       choice("psf", {"none", "airy", "gaussian"}).fallback("none")
           .described("point spread function published for the detector's ensquared energy (none: not modelled)"),
@@ -40,6 +40,8 @@ class Telescope final : public LaneStage<Telescope> {
   friend class LaneStage<Telescope>;  // calls compute()
 
  public:
+  bool power_law() const override { return true; }  // area ∝ D², N = f'/D, transmittance a factor
+
   explicit Telescope(const Params& p)
       : params_(p), aperture_(p.handle("aperture")), obscuration_(p.handle("obscuration")),
         transmittance_(p.handle("transmittance")), focal_length_(p.handle("focal_length")),

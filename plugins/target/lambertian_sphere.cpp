@@ -24,7 +24,7 @@ using namespace radchain;
 
 const Schema& schema() {
   static const Schema s = {
-      quantity("diameter", "m", "30 cm").needed().above(0).at_most(1e4)
+      quantity("diameter", "m", "30 cm").needed().above(0).at_most(1e4).scales(Scaling::power_law)
           .described("sphere diameter D (a [[solve]] unknown for the smallest detectable object)"),
       number("albedo", "0.2").needed().above(0).at_most(1).described("albedo, of the kind albedo_kind says"),
       choice("albedo_kind", {"bond", "geometric"}).fallback("bond")

@@ -14,7 +14,7 @@ using namespace radchain;
 
 const Schema& schema() {
   static const Schema s = {
-      number("magnitude", "15.5").at_least(-30).at_most(40).fallback("15")
+      number("magnitude", "15.5").at_least(-30).at_most(40).fallback("15").scales(Scaling::magnitude)
           .described("apparent visual magnitude m (a [[solve]] unknown for the limiting magnitude)"),
   };
   return s;

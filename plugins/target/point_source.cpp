@@ -19,7 +19,7 @@ using namespace radchain;
 
 const Schema& schema() {
   static const Schema s = {
-      number("magnitude", "18").needed().at_least(-30).at_most(40)
+      number("magnitude", "18").needed().at_least(-30).at_most(40).scales(Scaling::magnitude)
           .described("apparent magnitude in `band` and `system` (a [[solve]] unknown for a limiting magnitude)"),
       choice("system", {"vega", "ab", "st"}).needed().affects_spectrum()
           .described("magnitude system: vega (α Lyr = reference_magnitude), ab (3631 Jy), st (3.63e-9 erg/s/cm²/Å)"),

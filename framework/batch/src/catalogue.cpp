@@ -203,6 +203,7 @@ int run_catalogue(const std::vector<std::string>& files, const CatalogueOptions&
           try {
             Chain chain = load_sensor(file, options.overrides);
             if (options.no_solve) chain.solves.clear();
+            chain.solver = options.solver;
             const Report report = chain.run();
             out.rows = catalogue_rows(file, report, options.extra_results);
           } catch (const InputError& error) {
@@ -233,6 +234,7 @@ std::string catalogue_job(const std::vector<std::string>& files, const Catalogue
   for (const auto& o : options.overrides) job += "set " + o.key + "=" + o.value + "\n";
   for (const auto& r : options.extra_results) job += "result " + r + "\n";
   if (options.no_solve) job += "no-solve\n";
+  if (options.solver == SolverChoice::root) job += "solver root\n";
   return job;
 }
 

@@ -176,6 +176,7 @@ namespace {
 Chain load_swept_sensor(const SweepOptions& options) {
   Chain chain = load_sensor(options.sensor_file, options.overrides);
   if (options.no_solve) chain.solves.clear();
+  chain.solver = options.solver;
   return chain;
 }
 
@@ -233,6 +234,7 @@ std::string Sweep::job() const {
   for (const auto& [key, range] : options_.axes) job += "axis " + key + "=" + range + "\n";
   for (const auto& r : results_) job += "result " + r + "\n";
   if (options_.no_solve) job += "no-solve\n";
+  if (options_.solver == SolverChoice::root) job += "solver root\n";
   return job;
 }
 

@@ -31,6 +31,7 @@ int sweep(const SweepCommand& command) {
                      "no axis: give at least one --set <section>.<key>=from:to:steps, e.g. --set optics.aperture=\"15 cm:30 cm:16\"");
   options.results = command.results;
   options.no_solve = command.sensor.no_solve;
+  options.solver = command.sensor.solver == "root" ? SolverChoice::root : SolverChoice::automatic;
   options.allow_large = command.allow_large;
   options.shard = shard_of(command.batch);
   const TableFormat format = format_of(command.output, TableFormat::csv);

@@ -183,6 +183,7 @@ ParameterRef Chain::parameter(const std::string& qualified_key) {
   ref.value_ = &entry.number;
   ref.stage_ = index;
   ref.spectral_ = entry.spec->spectral;
+  ref.scaling_ = entry.spec->scaling;
   return ref;
 }
 

@@ -44,7 +44,8 @@ std::string format_report_text(const Report& report) {
       if (s.roots.size() > 1)
         for (const auto& [name, value] : s.roots) roots += fmt::format("; {} alone gives {:.6g}", name, value);
       out += fmt::format("  {} from {}: {}{}\n", s.spec.unknown, join(s.spec.criteria, " + "),
-                         s.converged ? fmt::format("converged in {} evaluations, binding criterion \"{}\"", s.iterations, s.binding)
+                         s.converged ? fmt::format("converged in {} evaluations, {}, binding criterion \"{}\"{}", s.iterations, s.method,
+                                                   s.binding, s.fallback.empty() ? "" : " (not in closed form: " + s.fallback + ")")
                                      : "FAILED: " + s.message,
                          roots);
     }
@@ -97,7 +98,8 @@ std::string format_report_json(const Report& report) {
   auto& solves = j["solves"] = nlohmann::ordered_json::array();
   for (const auto& s : report.solves)
     solves.push_back({{"unknown", s.spec.unknown}, {"criteria", s.spec.criteria}, {"binding", s.binding}, {"value_si", s.value_si},
-                      {"converged", s.converged}, {"evaluations", s.iterations}, {"message", s.message}});
+                      {"converged", s.converged}, {"evaluations", s.iterations}, {"method", s.method},
+                      {"fallback", s.fallback}, {"message", s.message}});
   auto& expectations = j["expected"] = nlohmann::ordered_json::array();
   for (const auto& e : report.expectations)
     expectations.push_back({{"result", e.spec.result}, {"printed", e.spec.as_written}, {"printed_si", e.spec.value_si},

@@ -1,5 +1,8 @@
-// The chain's [[solve]] entries: each unknown is found by bracketing the root of its criteria's margins,
-// one point at a time (Boost.Math TOMS 748) or for lane_count points in lockstep (Dekker's method).
+// The chain's [[solve]] entries. Where the chain declares how the unknown acts (a power law of x or of the flux
+// 10^(−0.4 x), through stages whose results are power laws, into a criterion with a closed-form inverse), the root
+// follows in closed form from the margins at the bracket ends and is accepted when the margin there is zero to
+// 1e-12 (issue 15); otherwise, and with --solver root, the root is bracketed one point at a time (Boost.Math
+// TOMS 748) or for lane_count points in lockstep (Dekker's method).
 #include "radchain/chain.hpp"
 
 #include "radchain/error.hpp"
@@ -13,6 +16,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <numbers>
 
 namespace radchain {
 
@@ -34,11 +38,97 @@ static double solver_margin(double margin) {
   return exponent + t * (10.0 / 7.0 - t * (4.0 / 7.0 - t * (1.0 / 7.0)));
 }
 
+namespace {
+
+// A closed-form root is kept when the margin there is this close to zero (a bracketing solve ends within 2^-47 of
+// the root, i.e. margins of ~1e-14 for the chain's power laws); otherwise the root is bracketed.
+constexpr double closed_form_tolerance = 1e-12;
+
+// One end of the bracket as the closed forms need it.
+struct Sample {
+  double x = 0, ratio = 0;            // the unknown; 1 + margin
+  double signal = 0, variance = 0;    // noise_equation: S and n² (electrons)
+};
+
+// ln(u(x1)/u(x0)) for the unknown's variable u: x itself (power_law), or the flux ratio 10^(−0.4 x) (magnitude).
+double log_variable_ratio(Scaling scaling, double x0, double x1) {
+  return scaling == Scaling::magnitude ? -0.4 * std::numbers::ln10 * (x1 - x0) : std::log(x1 / x0);
+}
+// The x at which ln(u/u(x0)) = log_ratio.
+double from_log_variable(Scaling scaling, double x0, double log_ratio) {
+  return scaling == Scaling::magnitude ? x0 - log_ratio / (0.4 * std::numbers::ln10) : x0 * std::exp(log_ratio);
+}
+
+// The root of the criterion's margin in closed form from the two bracket ends (docs/performance.md, "Closed-form
+// solves"); NaN when the ends do not follow the declared form (then the root is bracketed).
+double closed_form_root(InverseForm form, Scaling scaling, const Sample& a, const Sample& b) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  if (scaling == Scaling::power_law && !(a.x > 0 && b.x > 0)) return nan;
+  const double du = log_variable_ratio(scaling, a.x, b.x);
+  if (!std::isfinite(du) || du == 0) return nan;
+  if (form == InverseForm::power_law) {
+    // 1 + margin = c·u^k: k from the ends, then the u at which it is 1.
+    if (!(a.ratio > 0 && b.ratio > 0)) return nan;
+    const double k = std::log(b.ratio / a.ratio) / du;
+    if (!(std::abs(k) > 1e-12)) return nan;
+    return from_log_variable(scaling, a.x, -std::log(a.ratio) / k);
+  }
+  // noise_equation: S ∝ u^k, n² = b·S + c, and 1 + margin = (S/n)/T. T is the same at both ends or the margin is
+  // not of this form. At the root S/n = T: S² = T² (b S + c), whose positive root is S = (T² b + √(T⁴b² + 4T²c))/2.
+  if (!(a.signal > 0 && b.signal > 0 && a.variance > 0 && b.variance > 0 && a.ratio > 0 && b.ratio > 0) ||
+      a.signal == b.signal)
+    return nan;
+  const double k = std::log(b.signal / a.signal) / du;
+  const double t_a = a.signal / (std::sqrt(a.variance) * a.ratio), t_b = b.signal / (std::sqrt(b.variance) * b.ratio);
+  if (!(std::abs(t_a - t_b) <= 1e-9 * t_a)) return nan;
+  const double slope = (b.variance - a.variance) / (b.signal - a.signal);
+  const Sample& faint = a.signal < b.signal ? a : b;  // c from the end where b·S is smaller: less cancellation
+  const double offset = faint.variance - slope * faint.signal;
+  const double t2 = t_a * t_a;
+  const double discriminant = t2 * t2 * slope * slope + 4.0 * t2 * offset;
+  if (!(discriminant >= 0)) return nan;
+  const double signal = 0.5 * (t2 * slope + std::sqrt(discriminant));
+  if (!(signal > 0)) return nan;
+  return from_log_variable(scaling, a.x, std::log(signal / a.signal) / k);
+}
+
+std::string stage_name(const StageSlot& s) { return fmt::format("{} (plugin \"{}\")", s.section, s.plugin); }
+
+}  // namespace
+
+Chain::Inversion Chain::inversion_for(const ParameterRef& unknown, const std::string& criterion) {
+  Inversion inversion;
+  std::size_t c = 0;
+  while (c < stages.size() && stages[c].section != "criteria." + criterion) ++c;
+  const StageSlot& owner = stages[unknown.stage()];
+  if (unknown.scaling() == Scaling::none || unknown.spectral()) {
+    inversion.why_not = stage_name(owner) + " declares no power law for the unknown";
+  } else if (c == stages.size() || c < unknown.stage() || stages[c].info->inverse == InverseForm::none) {
+    inversion.why_not = (c == stages.size() ? "criteria." + criterion : stage_name(stages[c])) + " declares no closed-form inverse";
+  } else {
+    for (std::size_t s = unknown.stage() + 1; s < c && inversion.why_not.empty(); ++s)
+      if (stages[s].section.rfind("criteria.", 0) != 0 && !stages[s].stage->power_law())
+        inversion.why_not = stage_name(stages[s]) + " does not declare power-law results";
+  }
+  if (!inversion.why_not.empty()) return inversion;
+  inversion.form = stages[c].info->inverse;
+  if (inversion.form == InverseForm::noise_equation) {
+    const auto signal = results_.find(vocabulary::detector_signal_electrons.name);
+    const auto noise = results_.find(vocabulary::detector_noise_electrons.name);
+    if (signal && noise) inversion.signal = *signal, inversion.noise = *noise;
+    else inversion.form = InverseForm::power_law;  // no noise budget published: the SNR itself as c·u^k
+  }
+  return inversion;
+}
+
 void Chain::resolve_solves(const std::vector<ResultId>& echo_ids) {
   resolved_.clear();
   for (std::size_t i = 0; i < solves.size(); ++i) {
-    ResolvedSolve r{parameter(solves[i].unknown), {}, i < echo_ids.size() ? echo_ids[i] : SIZE_MAX};
-    for (const auto& name : solves[i].criteria) r.margins.push_back(*results_.find(vocabulary::criterion_margin.in_criterion(name)));
+    ResolvedSolve r{parameter(solves[i].unknown), {}, {}, i < echo_ids.size() ? echo_ids[i] : SIZE_MAX};
+    for (const auto& name : solves[i].criteria) {
+      r.margins.push_back(*results_.find(vocabulary::criterion_margin.in_criterion(name)));
+      r.inversions.push_back(inversion_for(r.unknown, name));
+    }
     resolved_.push_back(std::move(r));
   }
 }
@@ -55,18 +145,35 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
   outcome.message.clear();
   outcome.binding.clear();
   outcome.roots.clear();
+  outcome.method.clear();
+  outcome.fallback.clear();
+  std::vector<std::pair<std::string, std::string>> methods;  // per criterion: how its root was found, why not closed
   auto set_unknown = [&](double x, Detail detail) {
     set(resolved.unknown, x);
     evaluate(detail);
   };
 
-  // Each criterion's own root (Boost.Math TOMS 748: Alefeld, Potra, Shi 1995; bracketing, superlinear).
+  // Each criterion's own root: in closed form where declared and confirmed, else bracketed (Boost.Math TOMS 748:
+  // Alefeld, Potra, Shi 1995; superlinear).
   for (std::size_t k = 0; k < margins.size(); ++k) {
+    const Inversion& inversion = resolved.inversions[k];
     auto f = [&](double x) {
       set_unknown(x, Detail::essential);
       return solver_margin(results_.value(margins[k]));
     };
-    const double f_lo = f(spec.lo), f_hi = f(spec.hi);
+    auto sample = [&](double x) {
+      Sample s{x, 1.0 + results_.value(margins[k])};
+      if (inversion.form == InverseForm::noise_equation) {
+        const double n = results_.value(inversion.noise);
+        s.signal = results_.value(inversion.signal), s.variance = n * n;
+      }
+      return s;
+    };
+    const double f_lo = f(spec.lo);
+    const Sample at_lo = sample(spec.lo);
+    const double f_hi = f(spec.hi);
+    const Sample at_hi = sample(spec.hi);
+    std::string method = "root (TOMS 748)", why_not = solver == SolverChoice::automatic ? inversion.why_not : "";
     if (std::isnan(f_lo) || std::isnan(f_hi)) {
       outcome.message = fmt::format("criterion \"{}\": the margin is not a number at the bracket ends", spec.criteria[k]);
       return;
@@ -83,17 +190,37 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
                                       spec.criteria[k], margin_lo, margin_hi, spec.lo, spec.hi);
         return;
       }
-      std::uintmax_t iterations = 200;
-      const auto [a, b] = boost::math::tools::toms748_solve(f, spec.lo, spec.hi, f_lo, f_hi,
-                                                            boost::math::tools::eps_tolerance<double>(48), iterations);
-      if (iterations >= 200) {
-        outcome.message = fmt::format("criterion \"{}\": no convergence in 200 iterations", spec.criteria[k]);
-        return;
+      bool closed = false;
+      if (solver == SolverChoice::automatic && inversion.form != InverseForm::none) {
+        const double x = closed_form_root(inversion.form, resolved.unknown.scaling(), at_lo, at_hi);
+        if (x >= std::min(spec.lo, spec.hi) && x <= std::max(spec.lo, spec.hi)) {
+          set_unknown(x, Detail::essential);
+          ++outcome.iterations;
+          const double margin = results_.value(margins[k]);
+          closed = std::abs(margin) <= closed_form_tolerance;
+          if (closed) root = x, method = inversion.form == InverseForm::noise_equation ? "closed form (noise equation)" : "closed form (power law)";
+          else why_not = fmt::format("the closed form's root {:.10g} leaves a margin of {:.3g}", x, margin);
+        } else {
+          why_not = "the margins at the bracket ends do not follow the declared power law";
+        }
       }
-      outcome.iterations += static_cast<int>(iterations);
-      root = 0.5 * (a + b);
+      if (!closed) {
+        std::uintmax_t iterations = 200;
+        const auto [a, b] = boost::math::tools::toms748_solve(f, spec.lo, spec.hi, f_lo, f_hi,
+                                                              boost::math::tools::eps_tolerance<double>(48), iterations);
+        if (iterations >= 200) {
+          outcome.message = fmt::format("criterion \"{}\": no convergence in 200 iterations", spec.criteria[k]);
+          return;
+        }
+        outcome.iterations += static_cast<int>(iterations);
+        root = 0.5 * (a + b);
+      }
+    } else {
+      method = "bracket end";
+      why_not.clear();
     }
     outcome.roots.emplace_back(spec.criteria[k], root);
+    methods.emplace_back(method, why_not);
   }
 
   // Keep the root at which every listed margin holds (≥ 0 up to the solver's tolerance): that criterion binds.
@@ -113,6 +240,8 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
   }
   outcome.value_si = outcome.roots[chosen].second;
   outcome.binding = spec.criteria[chosen];
+  outcome.method = methods[chosen].first;
+  outcome.fallback = methods[chosen].second;
   outcome.converged = true;
   set_unknown(outcome.value_si, Detail::full);
 }
@@ -126,6 +255,7 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
   const std::size_t n_criteria = resolved.margins.size();
   const double tolerance = std::ldexp(1.0, 1 - 48);  // boost::math::tools::eps_tolerance<double>(48), as solve()
   outcome.passes = 0;
+  outcome.closed_form = 0;
   outcome.converged.fill(true);
   for (auto& m : outcome.message) m.clear();
   auto margins_at = [&](const Lanes& x) {
@@ -146,6 +276,17 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
   std::vector<Lanes> roots(n_criteria);
   for (std::size_t k = 0; k < n_criteria; ++k) {
     const ResultId id = resolved.margins[k];
+    const Inversion& inversion = resolved.inversions[k];
+    const bool try_closed_form = solver == SolverChoice::automatic && inversion.form != InverseForm::none;
+    std::array<Sample, lane_count> at_lo, at_hi;
+    auto samples = [&](std::array<Sample, lane_count>& out, const Lanes& x) {
+      if (!try_closed_form) return;
+      const Lanes& m = lane_result(id);
+      for (int i = 0; i < lane_count; ++i) out[i] = Sample{x(i), 1.0 + m(i)};
+      if (inversion.form != InverseForm::noise_equation) return;
+      const Lanes &s = lane_result(inversion.signal), &n = lane_result(inversion.noise);
+      for (int i = 0; i < lane_count; ++i) out[i].signal = s(i), out[i].variance = n(i) * n(i);
+    };
     // Dekker's method per lane (Dekker 1969; Brent 1973 ch. 4): b the best end, a the contrapoint, c the previous
     // b. A secant step through b and c when it falls between b and the midpoint, else bisection; never a step
     // below the tolerance, so the bracket closes from both sides.
@@ -153,8 +294,10 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
     margins_at(a);
     Lanes f_a = solver_margins(id);
     const Lanes margin_lo = lane_result(id);
+    samples(at_lo, a);
     margins_at(b);
     Lanes f_b = solver_margins(id);
+    samples(at_hi, b);
     Lanes c = a, f_c = f_a;
     Lanes& root = roots[k];
     std::array<bool, lane_count> active{};
@@ -170,6 +313,23 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
                             spec.criteria[k], margin_lo(i), lane_result(id)(i), spec.lo, spec.hi));
       } else {
         active[i] = true;
+      }
+    }
+    if (try_closed_form) {  // the closed-form roots, kept where the margin confirms them (as solve())
+      Lanes x = root;
+      bool any = false;
+      std::array<bool, lane_count> candidate{};
+      for (int i = 0; i < lane_count; ++i) {
+        if (!active[i]) continue;
+        const double xi = closed_form_root(inversion.form, resolved.unknown.scaling(), at_lo[i], at_hi[i]);
+        candidate[i] = xi >= std::min(spec.lo, spec.hi) && xi <= std::max(spec.lo, spec.hi);
+        if (candidate[i]) x(i) = xi, any = true;
+      }
+      if (any) {
+        margins_at(x);
+        const Lanes& m = lane_result(id);
+        for (int i = 0; i < lane_count; ++i)
+          if (candidate[i] && std::abs(m(i)) <= closed_form_tolerance) root(i) = x(i), active[i] = false, ++outcome.closed_form;
       }
     }
     for (int iteration = 0; iteration < 200; ++iteration) {

@@ -41,13 +41,19 @@ class ParameterRef {
   double value() const { return *value_; }
   std::size_t stage() const { return stage_; }
   bool spectral() const { return spectral_; }
+  Scaling scaling() const { return scaling_; }
 
  private:
   friend class Chain;
   double* value_ = nullptr;
   std::size_t stage_ = 0;
   bool spectral_ = false;
+  Scaling scaling_ = Scaling::none;
 };
+
+// How a [[solve]] is performed: auto inverts in closed form where the chain declares it can (solver.cpp) and
+// checks the margin there, else brackets the root; root always brackets (--solver root, to compare).
+enum class SolverChoice { automatic, root };
 
 // [[solve]] unknown = "optics.aperture"  criterion = "energy"  bracket = ["1 cm", "2 m"]
 // With several criteria (criterion = ["energy", "matching"]) each margin is driven to zero in turn, and the
@@ -84,6 +90,8 @@ struct SolveOutcome {
   std::string message;  // why not, when not
   std::string binding;  // the criterion whose root was kept
   std::vector<std::pair<std::string, double>> roots;  // each criterion's own root (SI)
+  std::string method;    // how the binding criterion's root was found: "closed form (noise equation)", "root (TOMS 748)"
+  std::string fallback;  // why auto bracketed instead ("" when it did not, or --solver root)
 };
 
 // A [[solve]] in lanes: one root per lane (Chain::solve_lanes).
@@ -92,6 +100,7 @@ struct LaneSolveOutcome {
   std::array<bool, lane_count> converged{};
   std::array<std::string, lane_count> message;  // why not, where not
   int passes = 0;                               // lane evaluations
+  int closed_form = 0;                          // lanes whose root came from the closed form
 };
 
 struct ExpectationOutcome {
@@ -122,6 +131,7 @@ class Chain {
   std::vector<StageSlot> stages;
   std::vector<SolveSpec> solves;
   std::vector<Expectation> expected;
+  SolverChoice solver = SolverChoice::automatic;
 
   // What changed since the last evaluation: the spectral phase from the first stage with a changed spectral
   // parameter, then the scalar phase from the first stage with any change. Detail::essential (a solver's
@@ -195,11 +205,19 @@ class Chain {
   std::uint64_t lane_base_version_ = UINT64_MAX;  // the scalar evaluation lane_results_ were copied from
   LaneScales lane_scales_;
   // Each [[solve]] resolved once: its unknown, its criteria's margins, the result that echoes the solved value.
+  // Per criterion: its closed-form inverse, if the chain allows one (else why not).
+  struct Inversion {
+    InverseForm form = InverseForm::none;
+    std::string why_not;
+    ResultId signal = SIZE_MAX, noise = SIZE_MAX;  // noise_equation: the detector's S and n
+  };
   struct ResolvedSolve {
     ParameterRef unknown;
     std::vector<ResultId> margins;
+    std::vector<Inversion> inversions;  // parallel to margins
     ResultId echo = SIZE_MAX;
   };
+  Inversion inversion_for(const ParameterRef& unknown, const std::string& criterion);
   void solve(std::size_t index, SolveOutcome& outcome);
   std::vector<ResolvedSolve> resolved_;
 };

@@ -139,6 +139,10 @@ class Stage {
   // The scalar phase for lane_count points at once (radchain/lanes.hpp). Returns false when the stage has no
   // lane form; the chain then runs evaluate() once per lane.
   virtual bool evaluate_lanes(LaneContext& context);
+  // True when, as configured, every result is a product of powers of the stage's inputs and parameters and every
+  // noise variance a sum of such terms (no thresholds, no tables or PSF integrals over a scalar): a scaled unknown
+  // upstream then stays a power law through it, and a [[solve]] across it may be inverted in closed form.
+  virtual bool power_law() const { return false; }
 };
 
 // A stage whose scalar phase is one template, `template <class Access> void compute(Access&)` (radchain/lanes.hpp),
@@ -165,6 +169,12 @@ struct Need {
 };
 constexpr Need if_present(const Term& term) { return Need(term, true); }
 
+// How a criterion's margin inverts in closed form when every stage between the unknown and it is a power law
+// (solver.cpp): power_law — achieved/required is c·u^k in the unknown's variable u; noise_equation — the margin is
+// SNR/T − 1 with SNR = S/n the detector's signal and noise electrons, S ∝ u^k and n² = b·S + c (shot noise of the
+// signal plus what does not scale with it, or scales as it does), so S at SNR = T solves a quadratic.
+enum class InverseForm { none, power_law, noise_equation };
+
 // What a plugin file states about itself; the build supplies its name and kind.
 struct PluginDescription {
   const char* summary = "";    // one line
@@ -172,6 +182,7 @@ struct PluginDescription {
   const Schema& (*schema)() = nullptr;
   std::vector<Term> publishes = {};  // the vocabulary terms it declares (some only in some configurations)
   std::vector<Need> needs = {};      // the vocabulary terms it reads
+  InverseForm inverse = InverseForm::none;  // a criterion: its margin's closed-form inverse
 };
 
 struct PluginInfo {
@@ -185,6 +196,7 @@ struct PluginInfo {
   std::unique_ptr<Stage> (*create)(const Params& params);
   std::vector<Term> publishes;
   std::vector<Need> needs;
+  InverseForm inverse;
 
   bool publishes_term(const Term& term) const;
   const Need* need_of(const Term& term) const;
@@ -197,7 +209,7 @@ PluginInfo make_plugin_info(Kind kind, const char* name, PluginDescription d) {
                       if constexpr (std::is_constructible_v<StageType, const Params&>) return std::make_unique<StageType>(p);
                       else return std::make_unique<StageType>();  // a stage without parameters
                     },
-                    std::move(d.publishes), std::move(d.needs)};
+                    std::move(d.publishes), std::move(d.needs), d.inverse};
 }
 
 }  // namespace radchain

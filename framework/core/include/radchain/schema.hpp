@@ -23,6 +23,11 @@ enum class ParamType {
   spectrum,  // a CSV spectrum file (see spectrum_csv.hpp), loaded and unit-checked during validation
 };
 
+// How a parameter acts downstream, declared by the stage that owns it, for the closed-form inversion of a
+// [[solve]] (solver.cpp): the stage's results that change with it are power laws of x (power_law: D², f'⁻¹, t) or
+// of the flux ratio 10^(−0.4 x) (magnitude). none: only the bracketing root-finder solves for it.
+enum class Scaling { none, power_law, magnitude };
+
 // How many values a key takes: one (every plugin key), a list of one or more (criterion = ["energy", "matching"]
 // also accepts a single string), or exactly two (bracket = ["1 cm", "2 m"]).
 enum class ParamShape { scalar, list, pair };
@@ -42,6 +47,7 @@ struct ParamSpec {
   std::string doc;
   bool spectral = false;  // changing it re-runs the chain's spectral phase
   bool finite_only = false;  // ±inf refused (NaN always is)
+  Scaling scaling = Scaling::none;
 
   // Fluent setters, so a schema reads like a table.
   ParamSpec&& fallback(std::string value) && { default_value = std::move(value); return std::move(*this); }
@@ -56,6 +62,7 @@ struct ParamSpec {
   ParamSpec&& as_pair() && { shape = ParamShape::pair; return std::move(*this); }
   // Refuses ±infinity (and NaN): a tolerance of inf would let a check pass anything.
   ParamSpec&& finite() && { finite_only = true; return std::move(*this); }
+  ParamSpec&& scales(Scaling how) && { scaling = how; return std::move(*this); }
 
   std::string range_text() const;     // "> 0 m", "in [0, 1]", "one of e490, wehrli"
   std::string expected_text() const;  // what the error line says is expected

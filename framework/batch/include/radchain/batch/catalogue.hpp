@@ -23,6 +23,7 @@ struct CatalogueOptions {
   std::vector<Override> overrides;         // --set, applied to every file
   std::vector<std::string> extra_results;  // --results: more rows per file
   bool no_solve = false;                   // --no-solve: every file forward only, its [[solve]] entries skipped
+  SolverChoice solver = SolverChoice::automatic;  // --solver
   ShardSpec shard;
   std::atomic<std::size_t>* progress = nullptr;  // counts finished files
 };

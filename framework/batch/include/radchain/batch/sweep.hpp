@@ -46,6 +46,7 @@ struct SweepOptions {
   std::vector<Override> overrides;                        // fixed values: --set key=value
   std::vector<std::pair<std::string, std::string>> axes;  // --set key=from:to:steps, outermost first
   std::vector<std::string> results;                       // result columns; empty: every result
+  SolverChoice solver = SolverChoice::automatic;          // --solver
   bool no_solve = false;                                  // --no-solve: forward only at every point (a solved unknown may be an axis)
   ShardSpec shard;
   std::atomic<std::size_t>* progress = nullptr;           // counts finished points
