@@ -80,6 +80,27 @@ TEST(CliNoSolve, CatalogueEvaluatesEachFileForwardOnly) {
   EXPECT_NE(forward.out.find("msx-sbv,target.magnitude,15.5,15.55,"), std::string::npos) << forward.out;
 }
 
+// --solver: the closed form (auto) and the bracketing solver give the same limit; the report names the path.
+TEST(CliSolver, AutoAndRootAgreeAndTheReportSaysWhichRan) {
+  Scratch scratch;
+  const CliResult closed = run_cli(scratch, "run '" + sbv_file + "' --format json");
+  const CliResult root = run_cli(scratch, "run '" + sbv_file + "' --solver root --format json");
+  ASSERT_EQ(closed.exit_code, 0) << closed.err;
+  ASSERT_EQ(root.exit_code, 0) << root.err;
+  const auto a = nlohmann::json::parse(closed.out), b = nlohmann::json::parse(root.out);
+  EXPECT_EQ(a["solves"][0]["method"], "closed form (noise equation)");
+  EXPECT_EQ(b["solves"][0]["method"], "root (TOMS 748)");
+  const double m_closed = result_si(a, "target.magnitude"), m_root = result_si(b, "target.magnitude");
+  EXPECT_NEAR(m_closed, m_root, 1e-10 * m_root);
+  const CliResult text = run_cli(scratch, "run '" + sbv_file + "' --solver root");
+  EXPECT_NE(text.out.find("converged in"), std::string::npos);
+  EXPECT_NE(text.out.find("root (TOMS 748)"), std::string::npos) << text.out;
+  const CliResult bad = run_cli(scratch, "run '" + sbv_file + "' --solver newton");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(count_lines(bad.err), 1u) << bad.err;
+  EXPECT_NE(bad.err.find("--solver"), std::string::npos) << bad.err;
+}
+
 TEST(CliSolvedOverride, WarnsOnceOnStderrAndKeepsTheExitCode) {
   Scratch scratch;
   const CliResult r = run_cli(scratch, "run '" + sbv_file + "' --set target.magnitude=14");

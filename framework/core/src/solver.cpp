@@ -148,6 +148,9 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
   outcome.method.clear();
   outcome.fallback.clear();
   std::vector<std::pair<std::string, std::string>> methods;  // per criterion: how its root was found, why not closed
+  // With one criterion the closed form's check is the final full evaluation at the root.
+  const Detail check_detail = margins.size() == 1 ? Detail::full : Detail::essential;
+  bool final_evaluated = false;
   auto set_unknown = [&](double x, Detail detail) {
     set(resolved.unknown, x);
     evaluate(detail);
@@ -194,10 +197,11 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
       if (solver == SolverChoice::automatic && inversion.form != InverseForm::none) {
         const double x = closed_form_root(inversion.form, resolved.unknown.scaling(), at_lo, at_hi);
         if (x >= std::min(spec.lo, spec.hi) && x <= std::max(spec.lo, spec.hi)) {
-          set_unknown(x, Detail::essential);
+          set_unknown(x, check_detail);
           ++outcome.iterations;
           const double margin = results_.value(margins[k]);
           closed = std::abs(margin) <= closed_form_tolerance;
+          final_evaluated = closed && check_detail == Detail::full;
           if (closed) root = x, method = inversion.form == InverseForm::noise_equation ? "closed form (noise equation)" : "closed form (power law)";
           else why_not = fmt::format("the closed form's root {:.10g} leaves a margin of {:.3g}", x, margin);
         } else {
@@ -243,7 +247,7 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
   outcome.method = methods[chosen].first;
   outcome.fallback = methods[chosen].second;
   outcome.converged = true;
-  set_unknown(outcome.value_si, Detail::full);
+  if (!final_evaluated) set_unknown(outcome.value_si, Detail::full);
 }
 
 bool Chain::lanes_can_solve() const { return solves.size() == 1 && !resolved_.empty() && !resolved_[0].unknown.spectral(); }
@@ -315,6 +319,7 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
         active[i] = true;
       }
     }
+    bool final_evaluated = false;  // the closed form's check was the final full evaluation (one criterion)
     if (try_closed_form) {  // the closed-form roots, kept where the margin confirms them (as solve())
       Lanes x = root;
       bool any = false;
@@ -326,11 +331,20 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
         if (candidate[i]) x(i) = xi, any = true;
       }
       if (any) {
-        margins_at(x);
+        set_lanes(resolved.unknown, x);
+        evaluate_lanes(n_criteria == 1 ? Detail::full : Detail::essential);
+        ++outcome.passes;
         const Lanes& m = lane_result(id);
         for (int i = 0; i < lane_count; ++i)
           if (candidate[i] && std::abs(m(i)) <= closed_form_tolerance) root(i) = x(i), active[i] = false, ++outcome.closed_form;
+        final_evaluated = n_criteria == 1 && std::none_of(active.begin(), active.end(), [](bool a) { return a; });
       }
+    }
+    if (final_evaluated) {  // every lane's root is where the lanes were last evaluated, in full
+      outcome.value = root;
+      for (int i = 0; i < lane_count; ++i)
+        if (!outcome.converged[i]) outcome.value(i) = std::numeric_limits<double>::quiet_NaN();
+      return;
     }
     for (int iteration = 0; iteration < 200; ++iteration) {
       bool any = false;
