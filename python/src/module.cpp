@@ -14,12 +14,14 @@
 #include "radchain/sensor_file.hpp"
 #include "radchain/version.hpp"
 
+#include <boost/dll/runtime_symbol_info.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -420,14 +422,22 @@ py::list plugins() {
   return out;
 }
 
-// The plugin search path: `explicit_dirs`, then RADCHAIN_PLUGIN_PATH, then the build tree's plugins (this module was
-// built beside them), then the install prefix.
+// The plugin search path: `explicit_dirs`, then RADCHAIN_PLUGIN_PATH, then the plugins that belong with this module:
+// the build tree's when it is the build tree's module, else the prefix's it is installed in (lib/radchain/plugins
+// relative to lib/python3/dist-packages/radchain), then the configured install prefix (PluginHost).
 void configure(const std::vector<std::string>& explicit_dirs) {
+  namespace fs = std::filesystem;
   std::vector<std::string> dirs = explicit_dirs;
   if (const char* env = std::getenv("RADCHAIN_PLUGIN_PATH")) dirs.emplace_back(env);
-#ifdef RADCHAIN_PY_PLUGIN_DIR
-  dirs.emplace_back(RADCHAIN_PY_PLUGIN_DIR);
-#endif
+  std::error_code ec;
+  const fs::path here = boost::dll::this_line_location(ec).parent_path();
+  if (!ec) {
+    std::error_code same_ec;
+    if (fs::equivalent(here, RADCHAIN_PY_BUILD_MODULE_DIR, same_ec))
+      dirs.emplace_back(RADCHAIN_PY_BUILD_PLUGIN_DIR);
+    else
+      dirs.push_back((here / RADCHAIN_PY_INSTALLED_PLUGIN_DIR).lexically_normal().string());
+  }
   PluginHost::instance().configure(dirs);
 }
 
