@@ -29,8 +29,9 @@
 // (EMVA 1288 R4.0 §2.1 μ_p = A E t λ/(hc), eq. 1 μ_e = η μ_p; Ω = π(1−ε²)/(4N²), i.e. A_pixel Ω = A_pupil IFOV²:
 // physics::pixel_projected_solid_angle_sr). The noise of one (b×b binned) pixel over M exposures is the EMVA
 // model with spatial terms (eqs. 5, 6, 18; physics::emva_uniform_scene_variance_e2), SNR = M S₁ / n.
-// The mission convention (Sentinel-2 MRD and User Handbook: "SNR at L_ref" per band; Landsat-8 OLI: SNR at
-// L_typ) states the SNR of one pixel at a band-averaged spectral radiance L_ref in W m-2 sr-1 µm-1. Averaged
+// The mission convention (ESA Sentinel-2 User Handbook (2015), radiometric table: "SNR at L_ref" per band, the
+// mission requirement; Landsat-8 OLI: SNR at L_typ, Knight & Kvaran 2014) states the SNR of one pixel at a
+// band-averaged spectral radiance L_ref in W m-2 sr-1 µm-1. Averaged
 // with the system's response per watt (τ η λ), μ_e = k L_ref for any spectrum, k = N_tdi t p² Ω τ ∫ η λ/(hc) dλ
 // (physics::radiance_responsivity_e). Published: detector.scene_radiance (the scene's L̄ = μ_e/k),
 // detector.reference_radiance (`reference_radiance`, or `reference_reflectance` × L̄/ρ of a reflectance
