@@ -1,6 +1,6 @@
 // The C++ side of bench/python_sweep.py: the sweep Session.sweep() runs, called from C++ (PointsEvaluator,
 // radchain/batch/points.hpp), timed the same way: a warm-up run (worker chains built), then the median of
-// `repeat` runs of check + output allocation + run, wall clock, all cores.
+// `repeat` runs of check + output allocation (uninitialised) + run, wall clock, all cores.
 //   radchain_points_bench SENSOR POINTS REPEAT solve|forward
 // prints one JSON line: {"mode": ..., "points": ..., "median_s": ..., "runs_s": [...], "threads": ...}.
 #include "radchain/batch/points.hpp"
@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,10 @@ int main(int argc, char** argv) {
     for (int r = -1; r < repeat; ++r) {
       const auto start = std::chrono::steady_clock::now();
       evaluator.check(values, points);
-      std::vector<double> out(points * evaluator.results().size());
-      std::vector<char> ok(points);
-      evaluator.run(values, points, out.data(), ok.data());
+      // Uninitialised, as the binding's numpy arrays are (no single-threaded zero fill before the parallel run).
+      std::unique_ptr<double[]> out(new double[points * evaluator.results().size()]);
+      std::unique_ptr<char[]> ok(new char[points]);
+      evaluator.run(values, points, out.get(), ok.get());
       const auto stop = std::chrono::steady_clock::now();
       checksum += out[points / 2];
       if (r >= 0) runs.push_back(std::chrono::duration<double>(stop - start).count());

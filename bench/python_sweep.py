@@ -31,23 +31,30 @@ import radchain  # noqa: E402
 points = int(args.points)
 apertures = np.linspace(0.15, 0.30, points)
 print(f"radchain {radchain.framework_version}, {radchain.threads()} threads, {points} points, "
-      f"median of {args.repeat} runs after a warm-up; sensor {args.sensor}")
+      f"median of {args.repeat} alternating rounds after a warm-up; sensor {args.sensor}")
 for mode, result in (("solve", "target.magnitude"), ("forward", "detector.snr")):
     s = radchain.load(args.sensor)
     solve = mode == "solve"
     out = s.sweep({"optics.aperture": apertures}, results=[result], solve=solve)  # warm-up: worker chains built
-    runs = []
+    # Rounds alternate the two sides (three Python runs, then a C++ process's three timed runs after its own
+    # warm-up; each round's median), so that the load of a shared machine weighs on both alike.
+    py_runs, cpp_runs = [], []
     for _ in range(args.repeat):
-        start = time.perf_counter()
-        out = s.sweep({"optics.aperture": apertures}, results=[result], solve=solve)
-        runs.append(time.perf_counter() - start)
-    py = statistics.median(runs)
-    done = subprocess.run([str(build / "radchain_points_bench"), args.sensor, str(points), str(args.repeat), mode],
-                          capture_output=True, text=True, check=True)
-    cpp = json.loads(done.stdout)
-    assert cpp["checksum"] / (args.repeat + 1) == out[result][points // 2], "C++ and Python computed different values"
-    print(f"{mode:>8} ({result}): Python {py * 1e3:8.1f} ms   C++ {cpp['median_s'] * 1e3:8.1f} ms   "
-          f"ratio {py / cpp['median_s']:.3f}   (Python runs: {', '.join(f'{r * 1e3:.1f}' for r in runs)} ms)")
+        times = []
+        for _ in range(3):
+            start = time.perf_counter()
+            out = s.sweep({"optics.aperture": apertures}, results=[result], solve=solve)
+            times.append(time.perf_counter() - start)
+        py_runs.append(statistics.median(times))
+        done = subprocess.run([str(build / "radchain_points_bench"), args.sensor, str(points), "3", mode],
+                              capture_output=True, text=True, check=True)
+        cpp = json.loads(done.stdout)
+        assert cpp["checksum"] / 4 == out[result][points // 2], "C++ and Python computed different values"
+        cpp_runs.append(cpp["median_s"])
+    py, cc = statistics.median(py_runs), statistics.median(cpp_runs)
+    print(f"{mode:>8} ({result}): Python {py * 1e3:8.1f} ms   C++ {cc * 1e3:8.1f} ms   ratio {py / cc:.3f}")
+    print(f"{'':>8}   Python runs {', '.join(f'{r * 1e3:.1f}' for r in py_runs)} ms")
+    print(f"{'':>8}   C++ runs    {', '.join(f'{r * 1e3:.1f}' for r in cpp_runs)} ms")
 
 # For context: the command line's sweep of the same points (process start, load, solves, CSV to /dev/null).
 cli = build / "radchain"
