@@ -153,3 +153,18 @@ def test_sweep_releases_the_gil(sbv):
     # unloaded, about one tick per 1-2 ms of the sweep (a busy machine: fewer); with the GIL held through it, one
     # or two ticks in all
     assert ticks > max(5, seconds[0] * 20), (ticks, seconds)
+
+
+def test_several_solves_sweep_point_by_point(source_dir):
+    """Kolobrodov's camera solves f' and D (two [[solve]]s: no lanes): each point equals run() there, bit for bit."""
+    f = str(source_dir / "sensors" / "kolobrodov-1996-ccd151-computed.toml")
+    s = radchain.load(f)
+    assert s.solved == ["optics.focal_length", "optics.aperture"]
+    altitudes = np.array([300e3, 400e3, 600e3])
+    out = s.sweep({"platform.altitude": altitudes}, results=s.solved)
+    for i, h in enumerate(altitudes):
+        r = radchain.load(f, set={"platform.altitude": float(h)}).run()
+        for unknown in s.solved:
+            assert out[unknown][i] == r[unknown], (unknown, h)
+    # f' scales with the altitude at a fixed GSD
+    assert out["optics.focal_length"][2] / out["optics.focal_length"][0] == pytest.approx(2.0, rel=1e-12)
