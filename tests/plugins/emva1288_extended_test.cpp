@@ -5,7 +5,6 @@
 #include "radchain/chain.hpp"
 #include "radchain/constants.hpp"
 #include "radchain/error.hpp"
-#include "radchain/physics/emva1288.hpp"
 #include "radchain/spectrum_csv.hpp"
 
 #include <gtest/gtest.h>
@@ -205,16 +204,6 @@ TEST(Emva1288Extended, BinningAndCoAddsOnAUniformScene) {
   EXPECT_NEAR(v(r, "detector.reference_signal_electrons"), 4.0 * s1, 1e-9 * s1);
   EXPECT_NEAR(v(r, "detector.snr_at_reference"), 4.0 * s1 / noise, 1e-9 * s1 / noise);
   EXPECT_NEAR(v(r, "detector.noise_equivalent_radiance"), 1e8 / (4.0 * s1 / noise), 1e-9 * 1e8);
-}
-
-TEST(Emva1288Extended, PhysicsFunctionsByHand) {
-  EXPECT_NEAR(physics::pixel_projected_solid_angle_sr(4.0), std::numbers::pi / 64.0, 1e-16);
-  EXPECT_NEAR(physics::pixel_projected_solid_angle_sr(4.0, 0.5), 0.75 * std::numbers::pi / 64.0, 1e-16);
-  // PRNU of b² independent native pixels: s_g² S₁²/b²; DSNU b² σ_o²; over M frames in amplitude.
-  EXPECT_NEAR(physics::emva_uniform_scene_variance_e2(1000.0, 100.0, 3.0, 0.01, 2.0, 3.0),
-              3.0 * (1000.0 + 400.0) + 9.0 * (4.0 * 9.0 + 1e-4 * 1e6 / 4.0), 1e-9);
-  EXPECT_NEAR(physics::saturation_radiance(1000.0, 100.0, 9.0), 100.0, 1e-12);
-  EXPECT_EQ(physics::saturation_radiance(1000.0, 2000.0, 9.0), 0.0);
 }
 
 TEST(Emva1288Extended, BadInputIsRefusedWithTheKeyNamed) {
