@@ -110,6 +110,17 @@ int main(int argc, char** argv) {
   cli::add_solver(sweep_cmd, sweep.sensor.solver);
   sweep_cmd->add_flag("--allow-large", sweep.allow_large, "run a grid of more than 10^8 points (refused otherwise)");
 
+  cli::BudgetCommand budget;
+  auto* budget_cmd = app.add_subcommand("budget", "sensitivities: ∂result/∂input and elasticities for every numeric input, ranked (error budget)");
+  cli::add_sensor(budget_cmd, budget.sensor);
+  budget_cmd->add_option("--results", budget.results, "results to differentiate (comma-separated), e.g. target.magnitude,detector.snr")
+      ->delimiter(',')
+      ->required();
+  budget_cmd->add_option("--plot", budget.plot, "draw a tornado plot of the elasticities to this PNG with gnuplot");
+  cli::add_output(budget_cmd, budget.output, "text (default), csv or json");
+  cli::add_no_solve(budget_cmd, budget.sensor.no_solve);
+  cli::add_solver(budget_cmd, budget.sensor.solver);
+
   cli::MtfCommand mtf;
   auto* mtf_cmd = app.add_subcommand("mtf", "MTF curves of a pushbroom design (objective, detector, system) as CSV and a plot");
   cli::add_sensor(mtf_cmd, mtf.sensor);
@@ -153,6 +164,7 @@ int main(int argc, char** argv) {
     if (*cmp_cmd) return dispatch_checked(cli::compare(compare));
     if (*sweep_cmd) return dispatch_checked(cli::sweep(sweep));
     if (*merge_cmd) return dispatch_checked(cli::merge(merge));
+    if (*budget_cmd) return dispatch_checked(cli::budget(budget));
     if (*mtf_cmd) return dispatch_checked(cli::mtf(mtf));
     if (*render_cmd) return dispatch_checked(cli::render(render));
     if (*validate_cmd) return dispatch_checked(cli::validate(validate));

@@ -65,6 +65,16 @@ struct SweepCommand {
   bool allow_large = false;  // --allow-large: a grid above SweepOptions::large_points
 };
 
+// radchain budget SENSOR --results a,b [--set k=v] [--format text|csv|json] [--out F] [--plot tornado.png]:
+// ∂result/∂input and the elasticities for every numeric input (radchain/batch/budget.hpp), ranked; a tornado plot.
+struct BudgetCommand {
+  SensorArgs sensor;
+  std::vector<std::string> results;  // --results (comma-separated; required)
+  std::string plot;                  // --plot tornado.png
+  Output output;
+};
+int budget(const BudgetCommand& options);  // commands/budget.cpp
+
 struct MergeCommand {
   std::vector<std::string> shards;
   Output output;
