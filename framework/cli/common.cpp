@@ -18,10 +18,17 @@ void Sink::commit() {
 }
 
 TableFormat format_of(const Output& output, TableFormat fallback) {
-  if (!output.format.empty()) return parse_table_format(output.format);
-  if (!output.out.empty())
-    if (auto f = table_format_of_path(output.out)) return *f;
-  return fallback;
+  TableFormat format = fallback;
+  if (!output.format.empty()) format = parse_table_format(output.format);
+  else if (!output.out.empty())
+    if (auto f = table_format_of_path(output.out)) format = *f;
+  refuse_binary_to_stdout(format, output.out);
+  return format;
+}
+
+void refuse_binary_to_stdout(TableFormat format, const std::string& out) {
+  if (format == TableFormat::npy && out.empty())
+    throw InputError(SourceLocation{"--format", 0, 0}, "", "npy", "binary output: give --out FILE.npy");
 }
 
 ShardSpec shard_of(const Batch& batch) {

@@ -26,6 +26,8 @@ class Sink {
 };
 
 TableFormat format_of(const Output& output, TableFormat fallback);
+// .npy is binary: written to a file only (a terminal or a text pipe gets a located refusal).
+void refuse_binary_to_stdout(TableFormat format, const std::string& out);
 ShardSpec shard_of(const Batch& batch);
 
 }  // namespace radchain::cli

@@ -113,8 +113,8 @@ struct ShardReader {
     shard.order = fields["order"] == "round-robin" ? ShardSpec::Order::round_robin : ShardSpec::Order::block;
     if (fields["kind"] != "catalogue" && fields["kind"] != "sweep")
       throw fail("shard header: kind=" + fields["kind"] + " is neither catalogue nor sweep");
-    if (fields["format"] != "text" && fields["format"] != "csv" && fields["format"] != "json")
-      throw fail("shard header: format=" + fields["format"] + " is not text, csv or json");
+    if (fields["format"] != "text" && fields["format"] != "csv" && fields["format"] != "json" && fields["format"] != "npy")
+      throw fail("shard header: format=" + fields["format"] + " is not text, csv, json or npy");
     if (fields["types"].find_first_not_of("nt") != std::string::npos)
       throw fail("shard header: types=" + fields["types"] + " has letters other than n and t");
     std::size_t total = 0;

@@ -260,7 +260,9 @@ int Sweep::run(TableWriter& writer, std::string* failure,
   constexpr std::size_t block = 16384;
   std::vector<double> values(std::min(block, range.count) * n_columns);
   std::vector<char> ok(std::min(block, range.count));
-  std::vector<std::vector<std::string>> cells(std::min(block, range.count));
+  // Formatted on the worker threads, unless the writer stores the numbers as they are (.npy).
+  const bool values_only = writer.takes_values();
+  std::vector<std::vector<std::string>> cells(values_only ? 0 : std::min(block, range.count));
   run_batch(
       range.count, block, 64,
       [&](std::size_t slot, std::size_t begin, std::size_t end) {
@@ -277,10 +279,11 @@ int Sweep::run(TableWriter& writer, std::string* failure,
               std::lock_guard lock(failure_mutex);
               if (group[k] < first_failed) first_failed = group[k], first_message = worker->failure_of(k);
             }
+            if (values_only) continue;
             std::vector<std::string>& row = cells[at + k];
             row.clear();
             row.reserve(n_columns);
-            for (std::size_t c = 0; c < n_columns; ++c) row.push_back(number_cell(values[(at + k) * n_columns + c]));
+            for (std::size_t c = 0; c < n_columns; ++c) row.push_back(writer.number(values[(at + k) * n_columns + c]));
           }
         }
         if (options_.progress) options_.progress->fetch_add(end - begin, std::memory_order_relaxed);
@@ -288,7 +291,8 @@ int Sweep::run(TableWriter& writer, std::string* failure,
       [&](std::size_t i) {
         const std::size_t at = i % block;
         if (observer) observer(range[i], &values[at * n_columns]);
-        writer.row(range[i], cells[at]);
+        if (values_only) writer.row_values(range[i], &values[at * n_columns]);
+        else writer.row(range[i], cells[at]);
       });
   if (first_failed == std::numeric_limits<std::size_t>::max()) return 0;
   if (failure) *failure = first_message;

@@ -15,6 +15,8 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <bit>
+#include <limits>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -33,7 +35,8 @@ TableFormat parse_table_format(const std::string& name) {
   if (name == "text") return TableFormat::text;
   if (name == "csv") return TableFormat::csv;
   if (name == "json") return TableFormat::json;
-  throw InputError(SourceLocation{"--format", 0, 0}, "", name, "expected text, csv or json");
+  if (name == "npy") return TableFormat::npy;
+  throw InputError(SourceLocation{"--format", 0, 0}, "", name, "expected text, csv, json or npy");
 }
 
 std::string to_string(TableFormat format) {
@@ -41,6 +44,7 @@ std::string to_string(TableFormat format) {
     case TableFormat::text: return "text";
     case TableFormat::csv: return "csv";
     case TableFormat::json: return "json";
+    case TableFormat::npy: return "npy";
   }
   return "?";
 }
@@ -52,6 +56,7 @@ std::optional<TableFormat> table_format_of_path(const std::string& path) {
   if (ends_with(".csv")) return TableFormat::csv;
   if (ends_with(".json")) return TableFormat::json;
   if (ends_with(".txt")) return TableFormat::text;
+  if (ends_with(".npy")) return TableFormat::npy;
   return std::nullopt;
 }
 
@@ -66,6 +71,45 @@ std::string number_cell(double value) {
   if (std::isnan(value)) return "nan";
   return fmt::format("{:.10g}", value);
 }
+
+// --- .npy --------------------------------------------------------------------------------------------------
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the .npy writer stores the machine's doubles as '<f8'");
+
+// A Python string literal for the header's dict.
+std::string python_string(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\\' || c == '\'') out += '\\';
+    out += c;
+  }
+  return out + "'";
+}
+
+// NumPy's .npy format (numpy.lib.format, NEP 1): magic "\x93NUMPY", version, the header length (little-endian
+// uint16 in version 1.0; uint32 in 3.0, whose header is UTF-8), then a Python dict literal padded with spaces to a
+// multiple of 64 bytes and ended by '\n', then the data. One record per row with one little-endian float64 field
+// per column, so that `pandas.DataFrame(numpy.load(path))` has the table's column names.
+std::string npy_header(const std::vector<std::string>& columns, std::size_t rows) {
+  std::string descr;
+  for (const auto& c : columns) descr += "(" + python_string(c) + ", '<f8'), ";
+  std::string dict = "{'descr': [" + descr + "], 'fortran_order': False, 'shape': (" + std::to_string(rows) + ",), }";
+  const bool ascii = std::all_of(dict.begin(), dict.end(), [](char c) { return static_cast<unsigned char>(c) < 0x80; });
+  const bool v1 = ascii && dict.size() + 11 + 63 < 65536;
+  const std::size_t preamble = v1 ? 10 : 12;
+  dict.append((64 - (preamble + dict.size() + 1) % 64) % 64, ' ');
+  dict += '\n';
+  std::string header = "\x93NUMPY";
+  header += static_cast<char>(v1 ? 1 : 3);
+  header += '\0';
+  const std::size_t length = dict.size();
+  for (std::size_t b = 0; b < (v1 ? 2u : 4u); ++b) header += static_cast<char>((length >> (8 * b)) & 0xff);
+  return header + dict;
+}
+
+}  // namespace
 
 // --- TableWriter -------------------------------------------------------------------------------------------
 
@@ -96,6 +140,12 @@ TableWriter::TableWriter(std::ostream& out, TableFormat format, TableLayout layo
     return;
   }
   w.summary = summary_for(w.layout.kind);
+  if (w.format == TableFormat::npy) {
+    if (std::find(w.layout.numeric.begin(), w.layout.numeric.end(), false) != w.layout.numeric.end())
+      throw InputError(SourceLocation{"--format", 0, 0}, "", "npy",
+                       fmt::format("a {} table has text columns; .npy holds numbers only (use csv or json)", w.layout.kind));
+    w.out << npy_header(w.layout.columns, w.points);
+  }
   if (w.format == TableFormat::csv) write_csv_record(w.out, w.layout.columns);
   if (w.format == TableFormat::json) {
     std::string columns;
@@ -120,6 +170,17 @@ void TableWriter::row(std::size_t point, const std::vector<std::string>& cells) 
     return;
   }
   switch (w.format) {
+    case TableFormat::npy: {  // from cells written by number_cell() (a merge of shards): parsed back exactly
+      std::vector<double> values(cells.size());
+      for (std::size_t i = 0; i < cells.size(); ++i) {
+        const std::string& cell = cells[i];
+        const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), values[i]);
+        if (cell.empty() || error != std::errc() || end != cell.data() + cell.size())
+          values[i] = std::numeric_limits<double>::quiet_NaN();
+      }
+      w.out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(double)));
+      break;
+    }
     case TableFormat::csv: write_csv_record(w.out, cells); break;
     case TableFormat::text: w.buffered.push_back(cells); break;
     case TableFormat::json: {
@@ -134,12 +195,38 @@ void TableWriter::row(std::size_t point, const std::vector<std::string>& cells) 
   }
 }
 
+std::string TableWriter::number(double value) const {
+  if (impl_->format != TableFormat::npy) return number_cell(value);
+  return std::isnan(value) ? "nan" : fmt::format("{}", value);
+}
+
+bool TableWriter::takes_values() const { return impl_->format == TableFormat::npy && !impl_->shard.active(); }
+
+void TableWriter::row_values(std::size_t point, const double* values) {
+  Impl& w = *impl_;
+  const std::size_t n = w.layout.columns.size();
+  if (takes_values() && !w.summary) {
+    ++w.rows;
+    w.out.write(reinterpret_cast<const char*>(values), static_cast<std::streamsize>(n * sizeof(double)));
+    return;
+  }
+  std::vector<std::string> cells(n);
+  for (std::size_t i = 0; i < n; ++i) cells[i] = number(values[i]);
+  row(point, cells);
+}
+
 void TableWriter::finish(int exit_code) {
   Impl& w = *impl_;
   if (w.finished) return;
   w.finished = true;
   if (w.shard.active()) {
     w.out << fmt::format("{}rows={} exit={}\n", trailer_magic, w.rows, exit_code);
+    w.out.flush();
+    return;
+  }
+  if (w.format == TableFormat::npy) {
+    // The header promised w.points records: a shorter file would load as garbage, so it is an error, not a file.
+    if (w.rows != w.points) throw std::logic_error(fmt::format(".npy: {} rows written of {}", w.rows, w.points));
     w.out.flush();
     return;
   }

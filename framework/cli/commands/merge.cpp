@@ -10,6 +10,7 @@ int merge(const MergeCommand& command) {
     format = parse_table_format(command.output.format);
   else if (!command.output.out.empty())
     format = table_format_of_path(command.output.out);
+  if (format) refuse_binary_to_stdout(*format, command.output.out);
   Sink sink(command.output.out);
   // The output is a temporary until every shard has been read and merged: a failed merge leaves an existing --out
   // untouched, and --out naming one of the shards replaces it only with the complete merge.

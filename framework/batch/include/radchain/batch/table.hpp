@@ -1,6 +1,6 @@
 #pragma once
 // The tabular output of the batch commands (catalogue, sweep, merge): rows in point order, so that the output
-// does not depend on the thread count, rendered as aligned text, CSV or JSON. With an active shard
+// does not depend on the thread count, rendered as aligned text, CSV, JSON or NumPy .npy (numbers only). With an active shard
 // (radchain/batch/shard.hpp) the writer writes a shard file instead.
 #include "radchain/batch/shard.hpp"
 
@@ -13,11 +13,11 @@
 
 namespace radchain {
 
-enum class TableFormat { text, csv, json };
-// "text", "csv", "json"; throws InputError otherwise.
+enum class TableFormat { text, csv, json, npy };
+// "text", "csv", "json", "npy"; throws InputError otherwise.
 TableFormat parse_table_format(const std::string& name);
 std::string to_string(TableFormat format);
-// The format a file name asks for: .csv, .json, .txt; nullopt for anything else.
+// The format a file name asks for: .csv, .json, .txt, .npy; nullopt for anything else.
 std::optional<TableFormat> table_format_of_path(const std::string& path);
 
 struct TableLayout {
@@ -50,6 +50,13 @@ class TableWriter {
 
   const TableLayout& layout() const;
   void row(std::size_t point, const std::vector<std::string>& cells);
+  // A row of an all-numeric table as numbers: .npy stores them as they are; the other formats format them
+  // (number_cell). takes_values(): the writer would only parse formatted cells back (npy, not a shard).
+  void row_values(std::size_t point, const double* values);
+  bool takes_values() const;
+  // A number as a cell of this table: number_cell(), or for .npy (a shard of an .npy job) the shortest text that
+  // reads back to the same double, so that merged shards give the bytes of the unsharded file.
+  std::string number(double value) const;
   // Writes what follows the rows; `exit_code` is what the command returns (a shard file records it).
   void finish(int exit_code);
 
