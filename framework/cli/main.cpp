@@ -121,6 +121,23 @@ int main(int argc, char** argv) {
   cli::add_no_solve(budget_cmd, budget.sensor.no_solve);
   cli::add_solver(budget_cmd, budget.sensor.solver);
 
+  cli::UncertaintyCommand uncertainty;
+  auto* uncertainty_cmd = app.add_subcommand("uncertainty", "Monte Carlo propagation of input distributions, beside the linear propagation");
+  cli::add_sensor(uncertainty_cmd, uncertainty.sensor);
+  uncertainty_cmd->add_option("--vary", uncertainty.vary,
+                              "an input's distribution in its units: key=normal(mean, sd) | uniform(lo, hi) | lognormal(mean, sd) | "
+                              "triangular(lo, mode, hi) (repeatable)")
+      ->required();
+  uncertainty_cmd->add_option("--results", uncertainty.results, "results (comma-separated), e.g. target.magnitude")
+      ->delimiter(',')
+      ->required();
+  uncertainty_cmd->add_option("--samples", uncertainty.samples, "Monte Carlo samples (default 1000)");
+  cli::add_seed(uncertainty_cmd, uncertainty.seed);
+  uncertainty_cmd->add_option("--threads", uncertainty.threads, "threads to use (default: all cores; same output for any count)");
+  cli::add_output(uncertainty_cmd, uncertainty.output, "text (default), csv or json");
+  cli::add_no_solve(uncertainty_cmd, uncertainty.sensor.no_solve);
+  cli::add_solver(uncertainty_cmd, uncertainty.sensor.solver);
+
   cli::MtfCommand mtf;
   auto* mtf_cmd = app.add_subcommand("mtf", "MTF curves of a pushbroom design (objective, detector, system) as CSV and a plot");
   cli::add_sensor(mtf_cmd, mtf.sensor);
@@ -165,6 +182,7 @@ int main(int argc, char** argv) {
     if (*sweep_cmd) return dispatch_checked(cli::sweep(sweep));
     if (*merge_cmd) return dispatch_checked(cli::merge(merge));
     if (*budget_cmd) return dispatch_checked(cli::budget(budget));
+    if (*uncertainty_cmd) return dispatch_checked(cli::uncertainty(uncertainty));
     if (*mtf_cmd) return dispatch_checked(cli::mtf(mtf));
     if (*render_cmd) return dispatch_checked(cli::render(render));
     if (*validate_cmd) return dispatch_checked(cli::validate(validate));

@@ -75,6 +75,19 @@ struct BudgetCommand {
 };
 int budget(const BudgetCommand& options);  // commands/budget.cpp
 
+// radchain uncertainty SENSOR --vary "key=normal(m, sd)" ... --results a,b [--samples N] [--seed S] [--threads N]:
+// Monte Carlo propagation (radchain/batch/uncertainty.hpp) beside the linear one from the budget's derivatives.
+struct UncertaintyCommand {
+  SensorArgs sensor;
+  std::vector<std::string> vary;     // --vary key=dist(args) (repeatable)
+  std::vector<std::string> results;  // --results (comma-separated; required)
+  std::size_t samples = 1000;        // --samples
+  std::uint64_t seed = 1;            // --seed
+  std::size_t threads = 0;           // --threads (0 = all cores; the output does not depend on it)
+  Output output;
+};
+int uncertainty(const UncertaintyCommand& options);  // commands/uncertainty.cpp
+
 struct MergeCommand {
   std::vector<std::string> shards;
   Output output;

@@ -1,0 +1,136 @@
+// `radchain uncertainty`: the distributions' moments, Monte Carlo against exact propagation through laws the chain
+// obeys exactly (S ∝ t; m − 5 log₁₀ D constant along SNR = T), reproducibility (seed, thread count), bad input.
+#include "cli_helpers.hpp"
+#include "radchain/batch/uncertainty.hpp"
+#include "radchain/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace {
+using namespace radchain;
+using namespace radchain::test;
+
+// Each distribution's mean and sd (closed forms) against the midpoint rule over its quantile function
+// (E[x] = ∫₀¹ Q(u) du), 2·10⁵ points: agreement to 1e-4 relative (the rule's error at the tails of the normal).
+TEST(Uncertainty, DistributionMomentsFromQuantiles) {
+  using K = Distribution::Kind;
+  for (const Distribution& d : {Distribution{K::normal, 0.56, 0.02, 0}, Distribution{K::uniform, 2, 5, 0},
+                                Distribution{K::lognormal, 6, 1.5, 0}, Distribution{K::triangular, 1, 2, 4},
+                                Distribution{K::triangular, 1, 1, 3}}) {
+    const int n = 200000;
+    double s = 0, s2 = 0;
+    for (int i = 0; i < n; ++i) {
+      const double x = d.quantile((i + 0.5) / n);
+      s += x, s2 += x * x;
+    }
+    const double mean = s / n, sd = std::sqrt(s2 / n - mean * mean);
+    EXPECT_NEAR(mean, d.mean(), 1e-4 * std::abs(d.mean())) << static_cast<int>(d.kind);
+    EXPECT_NEAR(sd, d.sd(), 1e-3 * d.sd()) << static_cast<int>(d.kind);
+  }
+  // The uniform variates: in (0, 1), reproducible, different per sample and per input.
+  EXPECT_EQ(sample_uniform(7, 3, 1), sample_uniform(7, 3, 1));
+  EXPECT_NE(sample_uniform(7, 3, 1), sample_uniform(7, 4, 1));
+  EXPECT_NE(sample_uniform(7, 3, 1), sample_uniform(7, 3, 2));
+  EXPECT_NE(sample_uniform(7, 3, 1), sample_uniform(8, 3, 1));
+}
+
+UncertaintyOptions sbv_options(std::vector<std::string> vary, std::vector<std::string> results, std::size_t samples) {
+  UncertaintyOptions o;
+  o.sensor_file = sbv_file;
+  o.vary = std::move(vary);
+  o.results = std::move(results);
+  o.samples = samples;
+  o.seed = 42;
+  return o;
+}
+
+// S ∝ t (forward only): S = S₀ t/t₀ is linear, so the linear propagation is exact (S₀ σ_t/t₀), the correlation is 1,
+// and the Monte Carlo mean and sd agree with it within sampling error (4 standard errors).
+TEST(Uncertainty, LinearChainMatchesLinearPropagation) {
+  UncertaintyOptions o = sbv_options({"detector.integration_time=normal(0.625 s, 10 ms)"}, {"detector.signal_electrons"}, 4000);
+  o.no_solve = true;
+  const Uncertainty u = run_uncertainty(o);
+  ASSERT_EQ(u.used, 4000u);
+  const ResultStatistics& s = u.results.at(0);
+  const double S0 = s.nominal, sd = S0 * 0.01 / 0.625;
+  EXPECT_NEAR(s.linear_sd, sd, 1e-6 * sd);
+  EXPECT_NEAR(s.correlation.at(0), 1.0, 1e-12);
+  EXPECT_NEAR(s.mean, S0, 4 * sd / std::sqrt(4000.0));
+  EXPECT_NEAR(s.sd, sd, 4 * sd / std::sqrt(2 * 4000.0));
+  EXPECT_NEAR(s.p50, S0, 4 * 1.2533 * sd / std::sqrt(4000.0));
+  EXPECT_NEAR(s.p95 - s.p5, 2 * 1.6449 * sd, 0.05 * 2 * 1.6449 * sd);
+}
+
+// The limiting magnitude along SNR = T: m = m₀ + 5 log₁₀(D/D₀) exactly, so for D ~ normal(15 cm, 0.3 cm) the
+// magnitude's median is m₀ (the median of D is D₀), its 5/95 % points are m₀ + 5 log₁₀(1 ∓ 1.6449 × 0.02), and
+// the linear sd is (5/ln 10) × 0.02.
+TEST(Uncertainty, LimitingMagnitudeOverAperture) {
+  const Uncertainty u = run_uncertainty(sbv_options({"optics.aperture=normal(15 cm, 3 mm)"}, {"target.magnitude"}, 4000));
+  const ResultStatistics& s = u.results.at(0);
+  const double linear = 5 / std::numbers::ln10 * 0.02;
+  EXPECT_NEAR(s.linear_sd, linear, 1e-6 * linear);
+  const double m0 = s.nominal;
+  EXPECT_NEAR(m0, 15.5565045, 1e-6);
+  const double se = linear / std::sqrt(4000.0);
+  EXPECT_NEAR(s.p50, m0, 4 * 1.2533 * se);
+  EXPECT_NEAR(s.p5, m0 + 5 * std::log10(1 - 1.6449 * 0.02), 6 * se);
+  EXPECT_NEAR(s.p95, m0 + 5 * std::log10(1 + 1.6449 * 0.02), 6 * se);
+  EXPECT_NEAR(s.sd, linear, 0.05 * linear);
+  EXPECT_GT(s.correlation.at(0), 0.999);
+}
+
+// The same seed gives the same output byte for byte, whatever the thread count; another seed another one.
+TEST(UncertaintyCli, ReproducibleAcrossSeedsAndThreads) {
+  Scratch scratch;
+  const std::string base = "uncertainty '" + sbv_file +
+                           "' --vary 'optics.transmittance=normal(0.56, 0.02)' --vary 'detector.read_noise=triangular(5 e-, 6 e-, 8 e-)' "
+                           "--results target.magnitude,detector.noise_electrons --samples 500 --format csv";
+  const CliResult one = run_cli(scratch, base + " --seed 3 --threads 1");
+  const CliResult two = run_cli(scratch, base + " --seed 3 --threads 2");
+  const CliResult other = run_cli(scratch, base + " --seed 4 --threads 2");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_EQ(one.out, two.out);
+  EXPECT_NE(one.out, other.out);
+  EXPECT_NE(one.out.find("target.magnitude,detector.read_noise,correlation,"), std::string::npos) << one.out;
+  const CliResult text = run_cli(scratch, "uncertainty '" + sbv_file +
+                                              "' --vary 'optics.transmittance=uniform(0.5, 0.6)' --results target.magnitude --samples 100");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("linear propagation"), std::string::npos) << text.out;
+}
+
+// Samples outside an input's accepted range (τ > 1) are counted and left out, not clamped.
+TEST(Uncertainty, OutOfRangeSamplesAreCounted) {
+  const Uncertainty u = run_uncertainty(sbv_options({"optics.transmittance=normal(0.99, 0.02)"}, {"target.magnitude"}, 1000));
+  EXPECT_GT(u.out_of_range, 200u);  // P(τ > 1) = 1 − Φ(0.5) = 0.31
+  EXPECT_LT(u.out_of_range, 420u);
+  EXPECT_EQ(u.used + u.out_of_range + u.failed, 1000u);
+}
+
+TEST(UncertaintyCli, BadInputIsOneLineAndExit2) {
+  Scratch scratch;
+  const std::string sbv = "uncertainty '" + sbv_file + "' --results target.magnitude ";
+  struct Case {
+    std::string arguments, expected;
+  };
+  for (const Case& k : std::vector<Case>{
+           {"--vary 'optics.transmittance=gauss(0.56, 0.02)'", "unknown distribution"},
+           {"--vary 'optics.aperture=normal(15, 0.3)'", "has no unit"},
+           {"--vary 'optics.aperture=normal(15 kg, 0.3 kg)'", "wrong unit"},
+           {"--vary 'optics.transmittance=normal(0.56)'", "takes 2 values"},
+           {"--vary 'optics.transmittance=normal(0.56, -1)'", "must be > 0"},
+           {"--vary 'target.magnitude=normal(15, 1)'", "[[solve]]"},
+           {"--vary 'optics.apperture=normal(15 cm, 1 cm)'", "did you mean"},
+           {"--vary 'optics.transmittance=normal(0.56, 0.02)' --samples 1", "at least 2"},
+       }) {
+    const CliResult r = run_cli(scratch, sbv + k.arguments);
+    EXPECT_EQ(r.exit_code, 2) << k.arguments << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << k.arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(k.expected), std::string::npos) << k.arguments << "\n" << r.err;
+  }
+}
+
+}  // namespace
