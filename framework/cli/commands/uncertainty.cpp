@@ -24,6 +24,10 @@ int uncertainty(const UncertaintyCommand& command) {
   options.results = command.results;
   options.samples = command.samples;
   options.seed = command.seed;
+  if (!options.no_solve) {  // a --set on a solved unknown is overwritten at every sample: say so, as run does
+    const Chain chain = load_sensor(options.sensor_file, options.overrides);
+    warn_about_solved_overrides(chain.solves, options.overrides, std::cerr);
+  }
   limit_threads(command.threads);
   const Uncertainty result = run_uncertainty(options);
   Sink sink(command.output.out);
