@@ -1,5 +1,5 @@
-// radchain: the command-line host. Subcommands: run, catalogue, compare, sweep, merge, mtf, render, validate,
-// plugins, describe. This file only declares the options (CLI11; the shared ones in options.cpp) and dispatches;
+// radchain: the command-line host. Subcommands: run, catalogue, compare, sweep, merge, budget, uncertainty, mtf,
+// render, validate, plugins, describe. This file only declares the options (CLI11; the shared ones in options.cpp) and dispatches;
 // commands/<name>.cpp run one subcommand each through one library call.
 // Exit codes: 0 ok, 1 a failed check ([expected], a solve, a compare tolerance), 2 bad input (one line on
 // stderr), 3 an internal error.
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
                   "an axis section.key=from:to:steps (\"optics.aperture=15 cm:30 cm:16\"), or a fixed value (repeatable)");
   sweep_cmd->add_option("--results", sweep.results, "result columns (comma-separated; default: every result)")->delimiter(',');
   sweep_cmd->add_option("--plot", sweep.plot, "draw a 1-D sweep to this PNG with gnuplot");
-  cli::add_output(sweep_cmd, sweep.output, "csv (default), text or json");
+  cli::add_output(sweep_cmd, sweep.output, "csv (default), text, json or npy (a NumPy structured array; needs --out)");
   cli::add_batch(sweep_cmd, sweep.batch);
   cli::add_no_solve(sweep_cmd, sweep.sensor.no_solve);
   cli::add_solver(sweep_cmd, sweep.sensor.solver);

@@ -260,9 +260,11 @@ int Sweep::run(TableWriter& writer, std::string* failure,
   constexpr std::size_t block = 16384;
   std::vector<double> values(std::min(block, range.count) * n_columns);
   std::vector<char> ok(std::min(block, range.count));
-  // Formatted on the worker threads, unless the writer stores the numbers as they are (.npy).
-  const bool values_only = writer.takes_values();
-  std::vector<std::vector<std::string>> cells(values_only ? 0 : std::min(block, range.count));
+  // Formatted on the worker threads (whole CSV lines where the writer takes them), unless the writer stores the
+  // numbers as they are (.npy).
+  const bool values_only = writer.takes_values(), lines_only = !values_only && writer.takes_lines();
+  std::vector<std::vector<std::string>> cells(values_only || lines_only ? 0 : std::min(block, range.count));
+  std::vector<std::string> lines(lines_only ? std::min(block, range.count) : 0);
   run_batch(
       range.count, block, 64,
       [&](std::size_t slot, std::size_t begin, std::size_t end) {
@@ -280,6 +282,10 @@ int Sweep::run(TableWriter& writer, std::string* failure,
               if (group[k] < first_failed) first_failed = group[k], first_message = worker->failure_of(k);
             }
             if (values_only) continue;
+            if (lines_only) {
+              TableWriter::csv_line(&values[(at + k) * n_columns], n_columns, lines[at + k]);
+              continue;
+            }
             std::vector<std::string>& row = cells[at + k];
             row.clear();
             row.reserve(n_columns);
@@ -292,6 +298,7 @@ int Sweep::run(TableWriter& writer, std::string* failure,
         const std::size_t at = i % block;
         if (observer) observer(range[i], &values[at * n_columns]);
         if (values_only) writer.row_values(range[i], &values[at * n_columns]);
+        else if (lines_only) writer.row_line(range[i], lines[at]);
         else writer.row(range[i], cells[at]);
       });
   if (first_failed == std::numeric_limits<std::size_t>::max()) return 0;

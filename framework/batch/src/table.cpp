@@ -15,6 +15,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <iterator>
 #include <bit>
 #include <limits>
 #include <charconv>
@@ -198,6 +199,25 @@ void TableWriter::row(std::size_t point, const std::vector<std::string>& cells) 
 std::string TableWriter::number(double value) const {
   if (impl_->format != TableFormat::npy) return number_cell(value);
   return std::isnan(value) ? "nan" : fmt::format("{}", value);
+}
+
+bool TableWriter::takes_lines() const {
+  return impl_->format == TableFormat::csv && !impl_->shard.active() && !impl_->summary;
+}
+
+void TableWriter::csv_line(const double* values, std::size_t count, std::string& line) {
+  line.clear();
+  for (std::size_t i = 0; i < count; ++i) {
+    if (i) line += ',';
+    if (std::isnan(values[i])) line += "nan";  // as number_cell()
+    else fmt::format_to(std::back_inserter(line), "{:.10g}", values[i]);
+  }
+  line += '\n';
+}
+
+void TableWriter::row_line(std::size_t, const std::string& line) {
+  ++impl_->rows;
+  impl_->out.write(line.data(), static_cast<std::streamsize>(line.size()));
 }
 
 bool TableWriter::takes_values() const { return impl_->format == TableFormat::npy && !impl_->shard.active(); }

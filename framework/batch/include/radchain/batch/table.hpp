@@ -57,6 +57,11 @@ class TableWriter {
   // A number as a cell of this table: number_cell(), or for .npy (a shard of an .npy job) the shortest text that
   // reads back to the same double, so that merged shards give the bytes of the unsharded file.
   std::string number(double value) const;
+  // CSV rows of numbers need no quoting: takes_lines() says the writer would only join the cells with commas (CSV,
+  // not a shard, no summary), so worker threads may format whole rows (csv_line) and row_line() writes them.
+  bool takes_lines() const;
+  static void csv_line(const double* values, std::size_t count, std::string& line);  // number_cell()s, ',', '\n'
+  void row_line(std::size_t point, const std::string& line);
   // Writes what follows the rows; `exit_code` is what the command returns (a shard file records it).
   void finish(int exit_code);
 
