@@ -12,9 +12,11 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <ostream>
 #include <streambuf>
+#include <vector>
 
 namespace {
 using namespace radchain;
@@ -124,6 +126,31 @@ SweepOptions million_apertures() {
   options.results = {"target.magnitude"};
   return options;
 }
+
+// The physical reference of issue 15: what a C++ programmer would write by hand for this one chain — Pan 2010
+// eq. (11) in closed form over the apertures, with the chain's own photon integral and noise floor taken from one
+// run (so only the per-point arithmetic is timed, as numpy_reference.py's vectorised() does). One core.
+void BM_MillionLimitingMagnitudes_HandWrittenLoop(benchmark::State& state) {
+  Chain chain = load_sensor(sbv);
+  (void)chain.run();
+  const double signal = chain.result("detector.signal_electrons"), noise = chain.result("detector.noise_electrons");
+  const double m0 = chain.result("target.magnitude"), d0 = chain.result("optics.aperture");
+  // At the solved limit S = T n: the electrons per unit flux ratio scale with D², the floor does not.
+  const double threshold = signal / noise, floor = noise * noise - signal;
+  const double t2 = threshold * threshold;
+  const double required = 0.5 * (t2 + std::sqrt(t2 * t2 + 4 * t2 * floor));  // = signal (the root)
+  const double electrons_per_ratio_d0 = signal / std::pow(10.0, -0.4 * m0);
+  std::vector<double> out(million);
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < million; ++i) {
+      const double d = aperture_at(i) / d0;
+      out[i] = -2.5 * std::log10(required / (electrons_per_ratio_d0 * d * d));
+    }
+    keep(out[million / 2]);
+  }
+  state.counters["m(15 cm)"] = -2.5 * std::log10(required / electrons_per_ratio_d0);
+}
+BENCHMARK(BM_MillionLimitingMagnitudes_HandWrittenLoop)->Unit(benchmark::kMillisecond);
 
 // Solves on one core: a sweep point (unknown reset, the solve, the result read) a million times.
 void BM_MillionSolves_OneCore(benchmark::State& state) {
