@@ -1,9 +1,9 @@
-// The plot of a 1-D sweep, drawn by the gnuplot binary (Debian gnuplot-nox has the pngcairo terminal; the plain
+// Plots of the command line (a 1-D sweep, MTF curves, a budget's tornado), drawn by the gnuplot binary (Debian gnuplot-nox has the pngcairo terminal; the plain
 // png terminal, libgd, is the fallback).
 //
 // Trust: every text that comes from outside (sensor names and paths in titles, result names, units, the output
 // path) reaches gnuplot as data, never as script text. The script below is a constant; the texts are passed as
-// `gnuplot -c script ARG1 … ARG6` arguments (string variables, never evaluated) and gnuplot is started with
+// `gnuplot -c script ARG1 …` arguments (string variables, never evaluated) and gnuplot is started with
 // posix_spawnp, so no shell sees them either. gnuplot 5.4 passes at most nine arguments, so the y-axis labels
 // travel as one argument, separated by the unit separator (control characters are replaced by spaces first).
 #include "plot.hpp"
@@ -19,6 +19,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
@@ -52,6 +53,31 @@ do for [i = 1:panels] {
   set ylabel ylab
   if (fixed[i]) { set yrange [low[i]:high[i]] } else { set autoscale y }
   plot ARG2 using 1:(column(i + 1)) with linespoints pointtype 7 pointsize 0.6
+}
+unset multiplot
+set output
+)gp";
+
+// The tornado (radchain budget --plot): fixed text. ARG1 output PNG, ARG2 data file (one block per panel, separated
+// by two blank lines: label TAB value, bottom bar first), ARG3 title, ARG4 the x labels separated by \037. The
+// terminal, the panel count and each panel's row count are written before it by plot_tornado.
+constexpr const char* tornado_script = R"gp(set output ARG1
+set datafile separator "\t"
+set style fill solid 0.75 border -1
+set grid x
+set key off
+set yzeroaxis lt -1 lw 1.5
+set offsets graph 0.06, graph 0.06, 0, 0
+set ytics scale 0 noenhanced
+set multiplot layout panels, 1 title ARG3
+labels = ARG4
+do for [i = 1:panels] {
+  cut = strstrt(labels, "\037")
+  xlab = (cut > 0) ? labels[1:cut - 1] : labels
+  labels = (cut > 0) ? labels[cut + 1:*] : ""
+  set xlabel xlab
+  set yrange [-0.6:rows[i] - 0.4]
+  plot ARG2 index (i - 1) using (0):0:(($2 < 0) ? $2 : 0):(($2 < 0) ? 0 : $2):($0 - 0.35):($0 + 0.35):(($2 < 0) ? 0xc0504d : 0x4f81bd):ytic(1) with boxxyerror lc rgb variable
 }
 unset multiplot
 set output
@@ -109,47 +135,29 @@ bool run_gnuplot(const std::vector<std::string>& arguments, const fs::path& log)
   return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
-}  // namespace
-
-void plot_sweep(const std::string& png_path, const std::string& title, const std::string& x_label,
-                const std::vector<double>& x, const std::vector<PlotSeries>& series) {
-  if (series.empty()) throw std::runtime_error("nothing to plot");
-  AtomicFile png(png_path, "--plot");  // gnuplot draws into a temporary; renamed only once it succeeded
+// Draws png_path with gnuplot: write_data fills the data file, head(terminal) is the part of the script radchain
+// chose itself (terminal, sizes, counts), followed by the constant `script`; arguments follow ARG1 (the PNG,
+// a temporary until gnuplot succeeded) and ARG2 (the data file). pngcairo first, plain png as the fallback.
+void draw(const std::string& png_path, const std::function<void(std::ostream&)>& write_data,
+          const std::function<std::string(const std::string& terminal)>& head, const char* script,
+          const std::vector<std::string>& arguments) {
+  AtomicFile png(png_path, "--plot");
   static std::atomic<int> counter{0};
   const fs::path dir = fs::temp_directory_path() / fmt::format("radchain-plot-{}-{}", ::getpid(), counter++);
   fs::create_directories(dir);
-  const fs::path data = dir / "data.tsv", script = dir / "plot.gp", log = dir / "gnuplot.log";
+  const fs::path data = dir / "data.tsv", script_path = dir / "plot.gp", log = dir / "gnuplot.log";
   {
     std::ofstream out(data);
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      out << fmt::format("{:.17g}", x[i]);
-      for (const auto& s : series) out << '\t' << (std::isfinite(s.y[i]) ? fmt::format("{:.17g}", s.y[i]) : "NaN");
-      out << '\n';
-    }
+    write_data(out);
   }
-  std::string y_labels;
-  for (std::size_t i = 0; i < series.size(); ++i) {
-    if (i) y_labels += label_separator;
-    y_labels += plain_text(label(series[i].label, series[i].unit));
-  }
-  // The script's head holds only what radchain chose itself: the terminal, the panel count and the y ranges.
-  auto write_script = [&](const std::string& terminal) {
-    std::ofstream gp(script);
-    const std::size_t height = series.size() * 320 + 60;
-    gp << fmt::format("set terminal {} noenhanced size 900,{}\n", terminal, height);
-    gp << fmt::format("panels = {}\narray fixed[{}]\narray low[{}]\narray high[{}]\n", series.size(), series.size(),
-                      series.size(), series.size());
-    for (std::size_t i = 0; i < series.size(); ++i) {
-      const YRange r = y_range(series[i].y);
-      gp << fmt::format("fixed[{0}] = {1}; low[{0}] = {2:.17g}; high[{0}] = {3:.17g}\n", i + 1, r.fixed ? 1 : 0,
-                        r.low, r.high);
-    }
-    gp << plot_script;
-  };
   auto run = [&](const std::string& terminal) {
-    write_script(terminal);
-    return run_gnuplot({"-c", script.string(), png.temporary_path(), data.string(), plain_text(title), plain_text(x_label), y_labels},
-                       log);
+    {
+      std::ofstream gp(script_path);
+      gp << head(terminal) << script;
+    }
+    std::vector<std::string> all = {"-c", script_path.string(), png.temporary_path(), data.string()};
+    all.insert(all.end(), arguments.begin(), arguments.end());
+    return run_gnuplot(all, log);
   };
   bool drawn = false;
   std::string why;
@@ -167,6 +175,66 @@ void plot_sweep(const std::string& png_path, const std::string& title, const std
   fs::remove_all(dir, ec);
   if (!drawn) throw std::runtime_error(why);
   png.commit();
+}
+
+}  // namespace
+
+void plot_sweep(const std::string& png_path, const std::string& title, const std::string& x_label,
+                const std::vector<double>& x, const std::vector<PlotSeries>& series) {
+  if (series.empty()) throw std::runtime_error("nothing to plot");
+  std::string y_labels;
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    if (i) y_labels += label_separator;
+    y_labels += plain_text(label(series[i].label, series[i].unit));
+  }
+  draw(
+      png_path,
+      [&](std::ostream& out) {
+        for (std::size_t i = 0; i < x.size(); ++i) {
+          out << fmt::format("{:.17g}", x[i]);
+          for (const auto& s : series) out << '\t' << (std::isfinite(s.y[i]) ? fmt::format("{:.17g}", s.y[i]) : "NaN");
+          out << '\n';
+        }
+      },
+      [&](const std::string& terminal) {
+        std::string head = fmt::format("set terminal {} noenhanced size 900,{}\n", terminal, series.size() * 320 + 60);
+        head += fmt::format("panels = {}\narray fixed[{}]\narray low[{}]\narray high[{}]\n", series.size(), series.size(),
+                            series.size(), series.size());
+        for (std::size_t i = 0; i < series.size(); ++i) {
+          const YRange r = y_range(series[i].y);
+          head += fmt::format("fixed[{0}] = {1}; low[{0}] = {2:.17g}; high[{0}] = {3:.17g}\n", i + 1, r.fixed ? 1 : 0, r.low, r.high);
+        }
+        return head;
+      },
+      plot_script, {plain_text(title), plain_text(x_label), y_labels});
+}
+
+void plot_tornado(const std::string& png_path, const std::string& title, const std::vector<TornadoPanel>& panels) {
+  if (panels.empty()) throw std::runtime_error("nothing to plot");
+  std::string x_labels;
+  for (std::size_t k = 0; k < panels.size(); ++k) {
+    if (k) x_labels += label_separator;
+    x_labels += plain_text(panels[k].x_label);
+  }
+  draw(
+      png_path,
+      [&](std::ostream& out) {
+        for (std::size_t k = 0; k < panels.size(); ++k) {
+          if (k) out << "\n\n";
+          if (panels[k].bars.empty()) out << "(none)\t0\n";
+          for (const auto& [name, value] : panels[k].bars) out << plain_text(name) << '\t' << fmt::format("{:.17g}", value) << '\n';
+        }
+      },
+      [&](const std::string& terminal) {
+        std::size_t height = 60;
+        for (const auto& p : panels) height += 90 + 26 * std::max<std::size_t>(p.bars.size(), 1);
+        std::string head = fmt::format("set terminal {} noenhanced size 900,{}\n", terminal, height);
+        head += fmt::format("panels = {}\narray rows[{}]\n", panels.size(), panels.size());
+        for (std::size_t i = 0; i < panels.size(); ++i)
+          head += fmt::format("rows[{}] = {}\n", i + 1, std::max<std::size_t>(panels[i].bars.size(), 1));
+        return head;
+      },
+      tornado_script, {plain_text(title), x_labels});
 }
 
 }  // namespace radchain::cli

@@ -1,6 +1,7 @@
 #pragma once
-// Plots for the command line (sweep --plot, mtf --plot): gnuplot draws them; see plot.cpp for the trust rule.
+// Plots for the command line (sweep --plot, mtf --plot, budget --plot): gnuplot draws them; see plot.cpp for the trust rule.
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace radchain::cli {
@@ -14,5 +15,12 @@ struct PlotSeries {
 };
 void plot_sweep(const std::string& png_path, const std::string& title, const std::string& x_label,
                 const std::vector<double>& x, const std::vector<PlotSeries>& series);
+
+// Horizontal bars about zero, one panel per x label (radchain budget --plot). Bars are listed bottom first.
+struct TornadoPanel {
+  std::string x_label;
+  std::vector<std::pair<std::string, double>> bars;  // label, value
+};
+void plot_tornado(const std::string& png_path, const std::string& title, const std::vector<TornadoPanel>& panels);
 
 }  // namespace radchain::cli
