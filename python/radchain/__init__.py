@@ -27,7 +27,7 @@ from . import _radchain
 from ._radchain import InputError, framework_version, plugin_abi_version
 
 __all__ = [
-    "InputError", "Session", "Result", "load", "loads", "describe", "plugins", "compare", "catalogue",
+    "InputError", "Session", "Result", "load", "loads", "describe", "plugins", "compare", "catalogue", "budget", "uncertainty",
     "configure", "search_path", "set_threads", "threads", "framework_version", "plugin_abi_version",
 ]
 __version__ = framework_version
@@ -342,6 +342,33 @@ def compare(a, b, set: dict | None = None, solve: bool = True, tolerance: float 
     columns = ["kind", "name", "a", "b", "unit", "a_value", "b_value", "a_si", "b_si", "si_unit", "delta",
                "delta_pct", "status"]
     return _pandas().DataFrame(rows, columns=columns)
+
+
+def budget(path, results, set: dict | None = None, solve: bool = True):
+    """The sensitivity budget, as `radchain budget --format json`: DataFrame of every (result, input) pair with the
+    derivative ∂r/∂x (SI), the elasticity ∂r/∂ln x, ∂ln r/∂ln x, its error estimate and method, ranked."""
+    if isinstance(results, str):
+        results = [results]
+    texts, numbers = _split_sets(set)
+    if numbers:
+        raise TypeError("budget(set=...) takes TOML value text, as --set does")
+    data = _json.loads(_radchain.budget(str(path), texts, list(results), not solve))
+    return _pandas().DataFrame(data["rows"], columns=data["columns"])
+
+
+def uncertainty(path, vary, results, samples: int = 1000, seed: int = 1, set: dict | None = None, solve: bool = True):
+    """Monte Carlo over `vary` (["optics.transmittance=normal(0.56, 0.02)", ...], the key's units), as
+    `radchain uncertainty --format json`: DataFrame of result, input, statistic, value, unit (mean, sd, p5, p50,
+    p95, the linear-propagation sd, and per input its correlation and derivative)."""
+    if isinstance(vary, str):
+        vary = [vary]
+    if isinstance(results, str):
+        results = [results]
+    texts, numbers = _split_sets(set)
+    if numbers:
+        raise TypeError("uncertainty(set=...) takes TOML value text, as --set does")
+    data = _json.loads(_radchain.uncertainty(str(path), texts, list(vary), list(results), int(samples), int(seed), not solve))
+    return _pandas().DataFrame(data["rows"], columns=data["columns"])
 
 
 def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True):

@@ -2,7 +2,9 @@
 // Everything here is a thin binding of radchain::core and radchain::batch: a Session owns one Chain built from a
 // sensor file (or its text) with overrides, exactly as `radchain run --set` builds it; sweeps go through
 // PointsEvaluator (radchain/batch/points.hpp) with the GIL released, on all cores.
+#include "radchain/batch/budget.hpp"
 #include "radchain/batch/catalogue.hpp"
+#include "radchain/batch/uncertainty.hpp"
 #include "radchain/batch/compare.hpp"
 #include "radchain/batch/points.hpp"
 #include "radchain/batch/table.hpp"
@@ -462,6 +464,37 @@ py::tuple catalogue(const std::vector<std::string>& inputs, const std::vector<st
   return py::make_tuple(out.str(), errors, code);
 }
 
+// --- budget and uncertainty (issue 17): the CLI's tables as JSON text, parsed into DataFrames in __init__.py ----
+
+std::string budget(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
+                   const std::vector<std::string>& results, bool no_solve) {
+  std::ostringstream out;
+  py::gil_scoped_release release;
+  Chain chain = load_sensor(path, to_overrides(sets));
+  if (no_solve) chain.solves.clear();
+  BudgetOptions options;
+  options.results = results;
+  write_budget(compute_budget(chain, options), TableFormat::json, out);
+  return out.str();
+}
+
+std::string uncertainty(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
+                        const std::vector<std::string>& vary, const std::vector<std::string>& results, std::size_t samples,
+                        std::uint64_t seed, bool no_solve) {
+  std::ostringstream out;
+  py::gil_scoped_release release;
+  UncertaintyOptions options;
+  options.sensor_file = path;
+  options.overrides = to_overrides(sets);
+  options.vary = vary;
+  options.results = results;
+  options.samples = samples;
+  options.seed = seed;
+  options.no_solve = no_solve;
+  write_uncertainty(run_uncertainty(options), TableFormat::json, out);
+  return out.str();
+}
+
 CompareInput compare_input(const py::object& x, const std::vector<Override>& overrides, bool solve) {
   if (py::isinstance<Session>(x)) {
     Session& s = x.cast<Session&>();
@@ -658,6 +691,8 @@ PYBIND11_MODULE(_radchain, m) {
   m.def("configure", &configure, py::arg("plugin_path") = std::vector<std::string>{});
   m.def("search_path", [] { return PluginHost::instance().search_path(); });
   m.def("catalogue", &catalogue);
+  m.def("budget", &budget);
+  m.def("uncertainty", &uncertainty);
   m.def("compare", static_cast<py::list (*)(const py::object&, const py::object&, const std::vector<std::pair<std::string, std::string>>&, bool, std::optional<double>)>(&radchain::python::compare));
   m.def("set_threads", [](std::size_t n) { limit_threads(n); });
   m.def("threads", [] { return thread_count(); });

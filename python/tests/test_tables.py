@@ -87,3 +87,30 @@ def test_catalogue_equals_cli_catalogue_json(cli, source_dir):
                 assert a == b, (column, a, b)
     assert df.attrs["exit_code"] == cli("catalogue", folder).returncode
     assert df.attrs["summary"] == ref.get("summary", "")
+
+
+def test_budget_equals_cli_and_the_closed_form(cli, sbv):
+    df = radchain.budget(sbv, "target.magnitude")
+    data = json.loads(cli("budget", sbv, "--results", "target.magnitude", "--format", "json").stdout)
+    assert df.to_dict("records") == data["rows"]
+    # m_lim ∝ 5 log10 D (S ∝ D², the floor fixed): dm/dln D = 5/ln 10 exactly (Pan 2010 eq. 11)
+    aperture = df[df["parameter"] == "optics.aperture"].iloc[0]
+    assert aperture["elasticity"] == pytest.approx(5 / math.log(10), rel=1e-6)
+
+
+def test_uncertainty_equals_cli_for_the_same_seed(cli, sbv):
+    vary = ["optics.transmittance=normal(0.56, 0.02)", "detector.read_noise=uniform(5 e-, 7 e-)"]
+    df = radchain.uncertainty(sbv, vary, "target.magnitude", samples=2000, seed=7)
+    args = ["uncertainty", sbv, "--results", "target.magnitude", "--samples", "2000", "--seed", "7", "--format", "json"]
+    for v in vary:
+        args += ["--vary", v]
+    assert df.to_dict("records") == json.loads(cli(*args).stdout)["rows"]
+    sd = df[(df["input"] == "") & (df["statistic"] == "sd")]["value"].iloc[0]
+    linear = df[(df["input"] == "") & (df["statistic"] == "linear_sd")]["value"].iloc[0]
+    assert sd == pytest.approx(linear, rel=0.1)  # small spreads: Monte Carlo ≈ linear propagation
+
+
+def test_budget_bad_result_is_an_input_error(sbv):
+    with pytest.raises(radchain.InputError) as error:
+        radchain.budget(sbv, "target.magnitud")
+    assert "did you mean" in str(error.value)
