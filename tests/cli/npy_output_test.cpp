@@ -77,6 +77,12 @@ TEST(NpyOutput, ShardsMergeIntoTheSameBytes) {
                                            (scratch / "part3").string() + " --out " + merged);
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_EQ(read_text(merged), read_text(whole));
+  // The shards say npy: merged to standard output it is refused, as a sweep's --format npy is.
+  const CliResult to_stdout = run_cli(scratch, "merge " + (scratch / "part1").string() + " " + (scratch / "part2").string() +
+                                                   " " + (scratch / "part3").string());
+  EXPECT_EQ(to_stdout.exit_code, 2);
+  EXPECT_EQ(to_stdout.out, "");
+  EXPECT_EQ(to_stdout.err, "merge: the shards are of an .npy job: give --out FILE.npy (or --format csv)\n");
 }
 
 TEST(NpyOutput, RefusedForTextColumnsAndForStandardOutput) {

@@ -185,7 +185,7 @@ struct ShardReader {
 
 }  // namespace
 
-int merge_shards(const std::vector<std::string>& files, std::ostream& out, std::optional<TableFormat> format) {
+int merge_shards(const std::vector<std::string>& files, std::ostream& out, std::optional<TableFormat> format, bool binary_ok) {
   if (files.empty()) throw InputError(SourceLocation{"merge", 0, 0}, "", "", "no shard files given");
   auto open_all = [&] {
     std::vector<std::unique_ptr<ShardReader>> readers;
@@ -226,6 +226,8 @@ int merge_shards(const std::vector<std::string>& files, std::ostream& out, std::
   layout.columns = first.columns;
   for (char t : first.fields.at("types")) layout.numeric.push_back(t == 'n');
   const TableFormat job_format = parse_table_format(first.fields.at("format"));
+  if (!binary_ok && format.value_or(job_format) == TableFormat::npy)
+    throw InputError(SourceLocation{"merge", 0, 0}, "", "", "the shards are of an .npy job: give --out FILE.npy (or --format csv)");
   TableWriter writer(out, format.value_or(job_format), layout, parse_count(first.fields.at("points")));
 
   // A k-way merge on the point index: every point lives in exactly one shard, and each shard is in point order.

@@ -14,7 +14,7 @@ int merge(const MergeCommand& command) {
   Sink sink(command.output.out);
   // The output is a temporary until every shard has been read and merged: a failed merge leaves an existing --out
   // untouched, and --out naming one of the shards replaces it only with the complete merge.
-  const int code = merge_shards(command.shards, sink.stream(), format);
+  const int code = merge_shards(command.shards, sink.stream(), format, !command.output.out.empty());
   sink.commit();
   return code;
 }

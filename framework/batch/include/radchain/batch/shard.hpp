@@ -49,7 +49,9 @@ PointRange shard_points(const ShardSpec& shard, std::size_t total);
 // Joins shard files into the output the unsharded job writes, in `format` (default: the job's). Returns the
 // job's exit code (the largest one the shards recorded). Throws InputError: not a shard file, shards of
 // different jobs, a shard missing, given twice or incomplete.
-int merge_shards(const std::vector<std::string>& files, std::ostream& out, std::optional<TableFormat> format = {});
+// binary_ok = false: a job whose format is .npy (format not given) is refused rather than written to `out` (a terminal).
+int merge_shards(const std::vector<std::string>& files, std::ostream& out, std::optional<TableFormat> format = {},
+                 bool binary_ok = true);
 
 // A job's fingerprint (64-bit FNV-1a, hex) of its description.
 std::string job_fingerprint(const std::string& description);
