@@ -2,6 +2,7 @@
 #include "radchain/batch/compare.hpp"
 
 #include "radchain/error.hpp"
+#include "parameter_lookup.hpp"
 #include "radchain/units.hpp"
 
 #include <fmt/format.h>
@@ -29,9 +30,7 @@ std::string unquoted(std::string text) {
   return text;
 }
 
-bool is_numeric(ParamType type) {
-  return type == ParamType::quantity || type == ParamType::number || type == ParamType::integer;
-}
+using batch_detail::is_numeric;
 
 // A results file of `radchain run --format json` -> the Report it was printed from (results and solves).
 Report report_from_json(const std::string& path) {

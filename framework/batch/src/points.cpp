@@ -4,6 +4,7 @@
 #include "radchain/batch/catalogue.hpp"
 #include "radchain/batch/thread_pool.hpp"
 #include "radchain/error.hpp"
+#include "parameter_lookup.hpp"
 
 #include <fmt/format.h>
 
@@ -15,10 +16,7 @@
 
 namespace radchain {
 namespace {
-
-bool is_numeric(ParamType type) {
-  return type == ParamType::quantity || type == ParamType::number || type == ParamType::integer;
-}
+using batch_detail::is_numeric;
 
 const ParamSpec& spec_of(Chain& chain, const std::string& key) {
   const auto dot = key.rfind('.');
@@ -32,36 +30,13 @@ ParameterRef numeric_parameter(Chain& chain, const std::string& key, const std::
   const auto dot = key.rfind('.');
   if (dot == std::string::npos || dot == 0 || dot + 1 == key.size())
     throw InputError(location, "", key, "expected <section>.<key>, e.g. optics.aperture");
-  const std::string section = key.substr(0, dot), name = key.substr(dot + 1);
-  const StageSlot* slot = nullptr;
-  std::vector<std::string> sections;
-  for (const auto& s : chain.stages) {
-    sections.push_back(s.section);
-    if (s.section == section) slot = &s;
-  }
-  if (!slot) {
-    const std::string near = nearest_match(section, sections);
-    throw InputError(location, "", key,
-                     fmt::format("the sensor file has no section \"{}\"{}; sections: {}", section,
-                                 near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(sections)));
-  }
-  const Params::Entry* entry = nullptr;
-  std::vector<std::string> numeric_keys;
-  for (const auto& e : slot->params->entries()) {
-    if (is_numeric(e.spec->type)) numeric_keys.push_back(e.spec->key);
-    if (e.spec->key == name) entry = &e;
-  }
+  const batch_detail::ParameterLookup found = batch_detail::look_up_parameter(chain, key.substr(0, dot), key.substr(dot + 1));
+  const Params::Entry* entry = found.entry;
   if (entry && !is_numeric(entry->spec->type))
     throw InputError(location, "", key,
                      fmt::format("not a number ({}): set it as TOML text, e.g. set(\"{}\", \"...\")",
                                  entry->spec->expected_text().substr(std::string("expected ").size()), key));
-  if (!entry) {
-    const std::string near = nearest_match(name, numeric_keys);
-    throw InputError(location, "", key,
-                     fmt::format("{} has no numeric parameter \"{}\"{}; its numeric parameters: {}", slot->params->context(),
-                                 name, near.empty() ? "" : " (did you mean \"" + near + "\"?)",
-                                 numeric_keys.empty() ? "none" : join(numeric_keys)));
-  }
+  if (!entry) throw InputError(location, "", key, found.problem);
   return chain.parameter(key);
 }
 

@@ -8,6 +8,7 @@
 #include "radchain/batch/thread_pool.hpp"
 #include "radchain/error.hpp"
 #include "radchain/units.hpp"
+#include "parameter_lookup.hpp"
 
 #include <fmt/format.h>
 
@@ -35,9 +36,7 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-bool is_numeric(ParamType type) {
-  return type == ParamType::quantity || type == ParamType::number || type == ParamType::integer;
-}
+using batch_detail::is_numeric;
 
 std::string unquoted(std::string example) {
   if (example.size() >= 2 && example.front() == '"' && example.back() == '"') example = example.substr(1, example.size() - 2);
@@ -68,34 +67,12 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
   const auto dot = key.rfind('.');
   if (dot == std::string::npos || dot == 0 || dot + 1 == key.size())
     throw fail("expected <section>.<key>=from:to:steps, e.g. optics.aperture=\"15 cm:30 cm:16\"");
-  const std::string section = key.substr(0, dot), name = key.substr(dot + 1);
-
-  const StageSlot* slot = nullptr;
-  std::vector<std::string> sections;
-  for (const auto& s : chain.stages) {
-    sections.push_back(s.section);
-    if (s.section == section) slot = &s;
-  }
-  if (!slot) {
-    const std::string near = nearest_match(section, sections);
-    throw fail(fmt::format("the sensor file has no section \"{}\"{}; sections: {}", section,
-                           near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(sections)));
-  }
-  const Params::Entry* entry = nullptr;
-  std::vector<std::string> numeric_keys;
-  for (const auto& e : slot->params->entries()) {
-    if (is_numeric(e.spec->type)) numeric_keys.push_back(e.spec->key);
-    if (e.spec->key == name) entry = &e;
-  }
+  const batch_detail::ParameterLookup found = batch_detail::look_up_parameter(chain, key.substr(0, dot), key.substr(dot + 1));
+  const Params::Entry* entry = found.entry;
   if (entry && !is_numeric(entry->spec->type))
     throw fail(fmt::format("{} is not a number ({}): only numeric parameters can be swept", key,
                            entry->spec->expected_text().substr(std::string("expected ").size())));
-  if (!entry) {
-    const std::string near = nearest_match(name, numeric_keys);
-    throw fail(fmt::format("{} has no numeric parameter \"{}\"{}; its numeric parameters: {}", slot->params->context(),
-                           name, near.empty() ? "" : " (did you mean \"" + near + "\"?)",
-                           numeric_keys.empty() ? "none" : join(numeric_keys)));
-  }
+  if (!entry) throw fail(found.problem);
   for (const auto& s : chain.solves)
     if (s.unknown == key)
       throw fail("a [[solve]] determines " + key + " at every point: sweep another parameter (or remove the solve)");
