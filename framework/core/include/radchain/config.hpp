@@ -21,6 +21,9 @@ struct ConfigValue {
   std::vector<std::pair<std::string, ConfigValue>> members;  // table, in file order
   SourceLocation where;
 
+  // Defined after the class: clang with libstdc++ 12 otherwise checks pair<string, ConfigValue> for completeness
+  // while ConfigValue is still incomplete, and refuses the implicit constructor.
+  ConfigValue();
   bool is_number() const { return type == Type::integer || type == Type::floating; }
   double number() const { return type == Type::integer ? static_cast<double>(integer_value) : floating_value; }
   const ConfigValue* find(const std::string& key) const;
@@ -29,6 +32,7 @@ struct ConfigValue {
   std::string as_toml() const;
   std::string type_name() const;  // "a string", "a number", ...
 };
+inline ConfigValue::ConfigValue() = default;
 
 // Parses a TOML file; a syntax error becomes InputError("file:line:col: TOML syntax: ...").
 ConfigValue parse_toml_file(const std::string& path);
