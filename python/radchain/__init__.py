@@ -381,9 +381,14 @@ def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True)
     if numbers:
         raise TypeError("catalogue(set=...) takes TOML value text, as --set does")
     table, errors, code = _radchain.catalogue([str(i) for i in inputs], texts, list(results or []), not solve)
+    return _catalogue_frame(table, errors, code)
+
+
+def _catalogue_frame(table: str, errors, code: int):
+    """The DataFrame of a catalogue's JSON table; errors None: the notes of its ERROR rows (the same messages)."""
     data = _json.loads(table)
     df = _pandas().DataFrame(data["rows"], columns=data["columns"])
     df.attrs["exit_code"] = code
-    df.attrs["errors"] = list(errors)
+    df.attrs["errors"] = list(df.loc[df["check"] == "ERROR", "note"]) if errors is None else list(errors)
     df.attrs["summary"] = data.get("summary", "")
     return df

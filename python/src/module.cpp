@@ -7,6 +7,8 @@
 #include "radchain/batch/uncertainty.hpp"
 #include "radchain/batch/compare.hpp"
 #include "radchain/batch/points.hpp"
+#include "radchain/batch/shard.hpp"
+#include "radchain/batch/sweep.hpp"
 #include "radchain/batch/table.hpp"
 #include "radchain/batch/thread_pool.hpp"
 #include "radchain/chain.hpp"
@@ -445,8 +447,15 @@ void configure(const std::vector<std::string>& explicit_dirs) {
 
 // --- catalogue and compare ---------------------------------------------------------------------------------------
 
+// `shard` "k/n" (with `order`, as --shard and --shard-order) makes the table a shard file of the JSON job, for
+// merge() (radchain.dask runs one per task); "" is the whole job.
+ShardSpec shard_of(const std::string& shard, const std::string& order) {
+  return shard.empty() ? ShardSpec{} : parse_shard(shard, order);
+}
+
 py::tuple catalogue(const std::vector<std::string>& inputs, const std::vector<std::pair<std::string, std::string>>& sets,
-                    const std::vector<std::string>& results, bool no_solve) {
+                    const std::vector<std::string>& results, bool no_solve, const std::string& shard,
+                    const std::string& order) {
   std::ostringstream out;
   std::vector<std::string> errors;
   int code = 0;
@@ -457,11 +466,51 @@ py::tuple catalogue(const std::vector<std::string>& inputs, const std::vector<st
     options.overrides = to_overrides(sets);
     options.extra_results = results;
     options.no_solve = no_solve;
-    TableWriter writer(out, TableFormat::json, catalogue_layout(), files.size(), {}, catalogue_job(files, options));
+    options.shard = shard_of(shard, order);
+    TableWriter writer(out, TableFormat::json, catalogue_layout(), files.size(), options.shard,
+                       catalogue_job(files, options));
     code = run_catalogue(files, options, writer, &errors);
     writer.finish(code);
   }
   return py::make_tuple(out.str(), errors, code);
+}
+
+// --- grid sweeps and merge (radchain.dask): `radchain sweep` and `radchain merge` with their outputs in memory --------
+
+// `radchain sweep path --set k=v … --set axis=from:to:steps … --results … [--no-solve] --format F [--shard k/n]`:
+// the table's bytes (a shard file when sharded), the first failing point's message ("" if none) and the exit code.
+py::tuple sweep_table(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
+                      const std::vector<std::pair<std::string, std::string>>& axes, const std::vector<std::string>& results,
+                      bool no_solve, const std::string& format, const std::string& shard, const std::string& order) {
+  std::ostringstream out;
+  std::string failure;
+  int code = 0;
+  {
+    py::gil_scoped_release release;
+    SweepOptions options;
+    options.sensor_file = path;
+    options.overrides = to_overrides(sets);
+    options.axes = axes;
+    options.results = results;
+    options.no_solve = no_solve;
+    options.shard = shard_of(shard, order);
+    Sweep sweep(options);
+    TableWriter writer(out, parse_table_format(format), sweep.layout(), sweep.points(), options.shard, sweep.job());
+    code = sweep.run(writer, &failure);
+    writer.finish(code);
+  }
+  return py::make_tuple(py::bytes(out.str()), failure, code);
+}
+
+// `radchain merge files… --format F`: the unsharded job's bytes and its exit code.
+py::tuple merge(const std::vector<std::string>& files, const std::string& format) {
+  std::ostringstream out;
+  int code = 0;
+  {
+    py::gil_scoped_release release;
+    code = merge_shards(files, out, parse_table_format(format));
+  }
+  return py::make_tuple(py::bytes(out.str()), code);
 }
 
 // --- budget and uncertainty (issue 17): the CLI's tables as JSON text, parsed into DataFrames in __init__.py ----
@@ -690,7 +739,10 @@ PYBIND11_MODULE(_radchain, m) {
   m.def("plugins", &plugins);
   m.def("configure", &configure, py::arg("plugin_path") = std::vector<std::string>{});
   m.def("search_path", [] { return PluginHost::instance().search_path(); });
-  m.def("catalogue", &catalogue);
+  m.def("catalogue", &catalogue, py::arg("inputs"), py::arg("sets"), py::arg("results"), py::arg("no_solve"),
+        py::arg("shard") = "", py::arg("order") = "block");
+  m.def("sweep_table", &sweep_table);
+  m.def("merge", &merge);
   m.def("budget", &budget);
   m.def("uncertainty", &uncertainty);
   m.def("compare", static_cast<py::list (*)(const py::object&, const py::object&, const std::vector<std::pair<std::string, std::string>>&, bool, std::optional<double>)>(&radchain::python::compare));

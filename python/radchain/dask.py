@@ -1,0 +1,100 @@
+"""radchain on a dask.distributed cluster: a sweep grid or a catalogue split into shards, one task per shard, joined
+by the batch path's merge (docs/python.md, "Dask"; docs/batch.md, "How a job is split").
+
+    from distributed import Client
+    import radchain.dask
+    client = Client("tcp://scheduler:8786")            # or Client(LocalCluster(...))
+    df = radchain.dask.sweep(client, "sensors/msx-sbv.toml", {"optics.aperture": "15 cm:30 cm:100000"},
+                             results=["target.magnitude"])
+    cat = radchain.dask.catalogue(client, ["sensors/"])
+
+Each task runs `radchain sweep … --shard k/n` (or `catalogue`) in the worker through the module and returns the
+shard file's bytes; the client merges them (`radchain merge`) into exactly what the unsharded job writes, rows in
+point order. The workers need the module and the sensor files (and their spectra) at the same absolute paths as the
+client: a shared filesystem or the same container image.
+"""
+from __future__ import annotations
+
+import io as _io
+import os as _os
+import tempfile as _tempfile
+import warnings as _warnings
+
+import numpy as _np
+
+from . import _catalogue_frame, _pandas, _radchain, _split_sets
+
+__all__ = ["sweep", "catalogue"]
+
+
+def _catalogue_shard(inputs, sets, results, no_solve, shard, order):
+    table, _errors, _code = _radchain.catalogue(inputs, sets, results, no_solve, shard, order)
+    return table.encode(), ""
+
+
+def _sweep_shard(path, sets, axes, results, no_solve, shard, order):
+    return _radchain.sweep_table(path, sets, axes, results, no_solve, "npy", shard, order)[:2]
+
+
+def _texts_only(set, call):
+    texts, numbers = _split_sets(set)
+    if numbers:
+        raise TypeError(f"{call}(set=...) takes TOML value text, as --set does")
+    return texts
+
+
+def _run_sharded(client, task, args, shards, order, format):
+    """One task per shard k/n (1 <= k <= n) of the same job; the shard files merged in point order.
+    Returns (merged bytes, exit code, the failure messages of the shards, in shard order)."""
+    if shards is None:
+        shards = max(1, len(client.scheduler_info()["workers"]))
+    shards = int(shards)
+    if shards < 1:
+        raise ValueError(f"shards = {shards}: give at least 1")
+    futures = [client.submit(task, *args, f"{k}/{shards}", order, pure=False) for k in range(1, shards + 1)]
+    parts = client.gather(futures)
+    with _tempfile.TemporaryDirectory(prefix="radchain-shards-") as folder:
+        files = []
+        for k, (table, _failure) in enumerate(parts, start=1):
+            files.append(_os.path.join(folder, f"part-{k}-of-{shards}.csv"))
+            with open(files[-1], "wb") as f:
+                f.write(table)
+        merged, code = _radchain.merge(files, format)
+    return merged, code, [failure for _table, failure in parts if failure]
+
+
+def sweep(client, path, axes: dict, set: dict | None = None, results=None, solve: bool = True, shards: int | None = None,
+          order: str = "block"):
+    """`radchain sweep path --set key=from:to:steps …` over the cluster: a DataFrame of the grid points in point
+    order (the last axis varying fastest), the columns and float64 values of `radchain sweep --out grid.npy`
+    ("optics.aperture_cm", "target.magnitude", … : axes in the unit their range is written in, results in their
+    display units).
+
+    axes: {"<section>.<key>": "from:to:steps"} (e.g. "15 cm:30 cm:1000"), the first outermost. set: fixed values,
+    TOML text. shards: how many tasks (default: one per worker); order: "block" or "round-robin" (--shard-order).
+    df.attrs["exit_code"] is the command's (1: a solve failed at some point, NaN there; a RuntimeWarning says where).
+    """
+    if not axes:
+        raise ValueError("sweep: give at least one axis, e.g. {\"optics.aperture\": \"15 cm:30 cm:16\"}")
+    if isinstance(results, str):
+        results = [results]
+    args = (_os.path.abspath(str(path)), _texts_only(set, "sweep"), [(str(k), str(v)) for k, v in axes.items()],
+            [str(r) for r in results or []], not solve)
+    merged, code, failures = _run_sharded(client, _sweep_shard, args, shards, order, "npy")
+    if failures:
+        _warnings.warn(f"radchain sweep: {failures[0]}", RuntimeWarning, stacklevel=2)
+    df = _pandas().DataFrame(_np.load(_io.BytesIO(merged)))
+    df.attrs["exit_code"] = code
+    return df
+
+
+def catalogue(client, inputs, set: dict | None = None, results=None, solve: bool = True, shards: int | None = None,
+              order: str = "block"):
+    """radchain.catalogue(inputs, …) over the cluster, one task per shard of the sensor files: the same DataFrame
+    (sensor, result, computed, reference, unit, delta, delta_pct, check, note; attrs exit_code, errors, summary).
+    shards: how many tasks (default: one per worker); order: "block" or "round-robin"."""
+    if isinstance(inputs, str):
+        inputs = [inputs]
+    args = ([_os.path.abspath(str(i)) for i in inputs], _texts_only(set, "catalogue"), list(results or []), not solve)
+    merged, code, _failures = _run_sharded(client, _catalogue_shard, args, shards, order, "json")
+    return _catalogue_frame(merged.decode(), None, code)
