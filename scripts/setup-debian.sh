@@ -19,6 +19,7 @@ packages=(
   python3-dev python3-pybind11 pybind11-dev   # `import radchain` (python/, docs/python.md), built for /usr/bin/python3
   python3-numpy python3-pandas python3-pytest # its arrays and tables, and its tests
   python3-distributed python3-dask          # radchain.dask: sweeps and catalogues over a dask cluster (docs/python.md)
+  python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib   # examples/notebooks, run by the tests
 )
 
 missing=()
