@@ -24,7 +24,7 @@ const Schema& schema() {
 class LambertianGround final : public Stage {
  public:
   explicit LambertianGround(const Params& p)
-      : params_(p), albedo_(p.handle("albedo")), contrast_(p.handle("contrast")),
+      : albedo_(p.handle("albedo")), contrast_(p.handle("contrast")),
         relative_(p.text("contrast_kind") == "relative") {}
 
   void prepare(Context& c) override {
@@ -63,7 +63,6 @@ class LambertianGround final : public Stage {
   }
 
  private:
-  const Params& params_;
   const double *albedo_, *contrast_;
   bool relative_;
   double ground_irradiance_per_scale_ = 0;
