@@ -7,7 +7,8 @@
 //   E'  = ∫_{λ1}^{λ2} E'_λ dλ  (the contrast signal's image irradiance; eq. 21 in spectral form, eq. 6)
 //   snr = E' / E_n  (= 1 at the energy threshold: eq. 21 = eq. 20)
 // Geometry: line length l_D = pitch × N; element MTF sinc(π V_D ν) (eq. 8); ν at contrast 0.5 (eq. 11);
-// the system resolution element V_s from eq. (15).
+// the system resolution element V_s from eq. (15) (or the printed V_s/V_D = 1.49 pinned) and its frequency at
+// contrast 0.5, ν_x2 = u/V_s (eq. 14).
 #include "radchain/physics/band.hpp"
 #include "radchain/physics/mtf.hpp"
 #include "radchain/physics/pushbroom.hpp"
@@ -43,6 +44,8 @@ const Schema& schema() {
           .described("paper value: pin k_c (the report shows the computed one beside it)"),
       choice("sinc_root", {"paper", "exact"}).fallback("exact")
           .described("u with sinc(πu) = 0.5 in eqs. (11), (14), (15): the paper's 0.6 or the exact 0.603355"),
+      number("system_element_ratio", "1.49").at_least(1)
+          .described("paper value: pin V_s / V_D (eq. 15, printed 1.49; default: eq. 15 solved with sinc_root)"),
   };
   return s;
 }
@@ -61,7 +64,8 @@ class CcdLine final : public Stage {
   explicit CcdLine(const Params& p)
       : params_(p), pitch_(p.handle("pixel_pitch")), element_(p.handle("element_size")),
         count_(p.handle("element_count")), clock_(p.handle("clock")), pinned_time_(p.handle("integration_time")),
-        nee_(p.handle("nee")), saturation_(p.handle("saturation_exposure")) {
+        nee_(p.handle("nee")), saturation_(p.handle("saturation_exposure")),
+        pinned_ratio_(p.handle("system_element_ratio")) {
     if (p.get("element_size") > p.get("pixel_pitch")) p.reject("element_size", "must not exceed pixel_pitch");
     if (!(p.get("band_max") > p.get("band_min"))) p.reject("band_max", "must be larger than band_min");
   }
@@ -88,7 +92,7 @@ class CcdLine final : public Stage {
     const bool paper_root = params_.text("sinc_root") == "paper";
     time_pinned_ = params_.has("integration_time");
     sinc_root_ = paper_root ? physics::kolobrodov_sinc_half_root_printed : physics::sinc_half_contrast_root();
-    element_ratio_ = physics::kolobrodov_system_element_ratio(sinc_root_);
+    element_ratio_computed_ = physics::kolobrodov_system_element_ratio(sinc_root_);
 
     const std::string pinned = " (pinned paper value)";
     id_time_ = c.declare(vocabulary::detector_integration_time, params_.has("integration_time") ? "input t_i" : "t_i = N / f_D (Kolobrodov 1996 worked example)", "ms");
@@ -119,8 +123,15 @@ class CcdLine final : public Stage {
                             "mm-1");
     id_nyquist_ = c.declare("nyquist_frequency", "m-1", "1 / (2 pitch)", "mm-1");
     id_mtf_nyquist_ = c.declare("mtf_at_nyquist", "1", "eq. (8): |sinc(π V_D ν_N)|");
-    id_element_ratio_ = c.declare("system_element_ratio", "1", "eq. (15) solved (TOMS 748): V_s / V_D");
+    if (params_.has("system_element_ratio")) {
+      id_element_ratio_ = c.declare("system_element_ratio", "1", "V_s / V_D (eq. 15)" + pinned);
+      id_element_ratio_computed_ = c.declare("system_element_ratio_computed", "1", "eq. (15) solved (TOMS 748): V_s / V_D");
+    } else {
+      id_element_ratio_ = c.declare("system_element_ratio", "1", "eq. (15) solved (TOMS 748): V_s / V_D");
+    }
     id_system_element_ = c.declare(vocabulary::detector_system_element, "V_s = (V_s/V_D) V_D (eq. 15)", "um");
+    id_nu_system_half_ = c.declare("nu_system_half_contrast", "m-1", "eq. (14): ν_x2 = u/V_s, the system's frequency at contrast 0.5",
+                                   "mm-1");
     if (params_.has("saturation_exposure"))
       id_dynamic_range_ = c.declare("dynamic_range", "1", "H_m / H_n (saturation over noise-equivalent exposure)");
     if (background_in_band_ > 0 && params_.has("saturation_exposure"))
@@ -152,8 +163,11 @@ class CcdLine final : public Stage {
     c.results.set(id_nu_half_, sinc_root_ / *element_);
     c.results.set(id_nyquist_, 0.5 / *pitch_);
     c.results.set(id_mtf_nyquist_, physics::detector_pixel_mtf(0.5 / *pitch_, *element_));
-    c.results.set(id_element_ratio_, element_ratio_);
-    c.results.set(id_system_element_, element_ratio_ * *element_);
+    const double element_ratio = id_element_ratio_computed_ ? *pinned_ratio_ : element_ratio_computed_;
+    c.results.set(id_element_ratio_, element_ratio);
+    if (id_element_ratio_computed_) c.results.set(*id_element_ratio_computed_, element_ratio_computed_);
+    c.results.set(id_system_element_, element_ratio * *element_);
+    c.results.set(id_nu_system_half_, sinc_root_ / (element_ratio * *element_));
     if (id_dynamic_range_) c.results.set(*id_dynamic_range_, *saturation_ / *nee_);
     if (id_saturation_) {
       const double saturation_working = physics::exposure_for_working_source(*saturation_, k_reference_, k_working_);
@@ -163,22 +177,22 @@ class CcdLine final : public Stage {
 
  private:
   const Params& params_;
-  const double *pitch_, *element_, *count_, *clock_, *pinned_time_, *nee_, *saturation_;
+  const double *pitch_, *element_, *count_, *clock_, *pinned_time_, *nee_, *saturation_, *pinned_ratio_;
   double signal_in_band_ = 0, background_in_band_ = 0;
   double k_reference_ = 1, k_working_ = 1, k_reference_computed_ = 1, k_working_computed_ = 1;
-  double sinc_root_ = 0.6, element_ratio_ = 1.49;
+  double sinc_root_ = 0.6, element_ratio_computed_ = 1.49;
   bool time_pinned_ = false;
   ResultId id_time_{}, id_k_ref_{}, id_k_work_{}, id_ratio_{}, id_nee_{}, id_nee_working_{}, id_threshold_{},
       id_signal_{}, id_snr_{}, id_line_{}, id_element_{}, id_nu_half_{}, id_nyquist_{}, id_mtf_nyquist_{}, id_element_ratio_{},
-      id_system_element_{}, id_pitch_{}, id_band_min_{}, id_band_max_{};
-  std::optional<ResultId> id_k_ref_computed_, id_k_work_computed_, id_saturation_, id_dynamic_range_, id_saturation_exposure_;
+      id_system_element_{}, id_nu_system_half_{}, id_pitch_{}, id_band_min_{}, id_band_max_{};
+  std::optional<ResultId> id_element_ratio_computed_, id_k_ref_computed_, id_k_work_computed_, id_saturation_, id_dynamic_range_, id_saturation_exposure_;
 };
 
 }  // namespace
 
 RADCHAIN_PLUGIN(CcdLine, {
     .summary = "CCD line array of a pushbroom camera: NEE from a reference lamp, element MTF, geometry",
-    .reference = "Kolobrodov 1996 eqs. (8), (11), (15), (20)-(21); Ishanin et al. 1991",
+    .reference = "Kolobrodov 1996 eqs. (8), (11), (14), (15), (20)-(21); Ishanin et al. 1991",
     .schema = schema,
     .publishes = {vocabulary::detector_integration_time, vocabulary::detector_utilisation_ratio,
                   vocabulary::detector_nee_working, vocabulary::detector_signal_irradiance, vocabulary::detector_snr,
