@@ -24,8 +24,9 @@ class PixelArray final : public Stage {
       : params_(p), pitch_(p.handle("pixel_pitch")), count_(p.handle("pixel_count")), time_(p.handle("integration_time")) {}
 
   void prepare(Context& c) override {
+    // Geometry only: light through optics, or none at all (a file without [source], [atmosphere], [target]).
     const RadiationForm form = c.light.signal.form;
-    if (form != RadiationForm::focal_irradiance && form != RadiationForm::focal_power)
+    if (form != RadiationForm::focal_irradiance && form != RadiationForm::focal_power && form != RadiationForm::none)
       c.refuse_form("light through optics (a focal-plane irradiance or a point image)", form);
     id_pitch_ = c.declare(vocabulary::detector_pixel_pitch, "input p", "um");
     id_count_ = c.declare("pixel_count", "1", "input N");

@@ -56,7 +56,7 @@ class Telescope final : public LaneStage<Telescope> {
 
   void prepare(Context& c) override {
     Radiation& signal = c.light.signal;
-    if (params_.has("transmittance_curve"))
+    if (params_.has("transmittance_curve") && signal.form != RadiationForm::none)
       signal.spectrum = signal.spectrum.product(params_.spectrum("transmittance_curve"), signal.spectrum.unit());
     if (signal.form == RadiationForm::pupil_irradiance) {
       signal.form = RadiationForm::focal_power;
@@ -64,7 +64,7 @@ class Telescope final : public LaneStage<Telescope> {
       if (!params_.has("focal_length"))
         params_.reject("aperture", "an extended scene needs focal_length as well (image irradiance depends on f/D)");
       signal.form = RadiationForm::focal_irradiance;
-    } else {
+    } else if (signal.form != RadiationForm::none) {  // none: a geometry-only file, nothing to image
       c.refuse_form("a point irradiance or a scene radiance at the pupil", signal.form);
     }
     form_ = signal.form;
@@ -109,7 +109,7 @@ class Telescope final : public LaneStage<Telescope> {
     a.set(id_obscuration_, eps);
     if (form_ == RadiationForm::focal_power) {
       a.signal_scale() *= area * tau;
-    } else {
+    } else if (form_ == RadiationForm::focal_irradiance) {
       const V n = a.param(focal_length_) / d;
       const V radiance_to_irradiance = std::numbers::pi * unobscured * tau / (4.0 * n * n);
       a.signal_scale() *= radiance_to_irradiance;

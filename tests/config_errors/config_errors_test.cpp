@@ -55,6 +55,7 @@ const Case cases[] = {
     {"plugin_bad_abi", test_plugins},
     {"plugin_no_entry", test_plugins},
     {"missing_section"},
+    {"no_light_section"},
     {"unknown_section"},
     {"solve_unknown_criterion"},
     {"solve_unknown_parameter"},

@@ -157,6 +157,12 @@ std::optional<ResultId> Context::look_up(const Term& term, bool required) {
 }
 
 void Context::refuse_form(const std::string& what, RadiationForm form) const {
+  // No light at all: the file is geometry-only (sensor_file.cpp: no [source], [atmosphere], [target]).
+  if (form == RadiationForm::none)
+    throw InputError({}, fmt::format("{} (plugin \"{}\")", section, plugin), "",
+                     fmt::format("needs light ({}), but the sensor file has no [source] section (nor [atmosphere], "
+                                 "[target]): add them, or use a stage that needs no light",
+                                 what));
   throw InputError({}, fmt::format("{} (plugin \"{}\")", section, plugin), "",
                    fmt::format("expected {} but the earlier stages deliver {}", what, to_string(form)));
 }

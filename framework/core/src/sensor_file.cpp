@@ -16,6 +16,9 @@ namespace {
 // Evaluation order. The atmosphere precedes the target: it attenuates the illumination on the way down
 // (ground scenes) and hands the target the up-path transmittance for what leaves it.
 const std::vector<std::string> stage_sections = {"source", "atmosphere", "target", "optics", "detector"};
+// The light comes from these three together; a geometry-only file (GSD, swath, MTF, NIIRS at a given SNR) has
+// none of them, and a stage that needs light then refuses, located at its own section.
+const std::vector<std::string> light_sections = {"source", "atmosphere", "target"};
 const std::vector<std::string> top_level_keys = {"sensor", "platform", "source", "target", "atmosphere", "optics",
                                                  "detector", "criteria", "solve", "expected"};
 
@@ -160,20 +163,32 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
   }
   if (chain.sensor_name.empty()) chain.sensor_name = path;
 
+  std::vector<std::pair<std::string, SourceLocation>> section_lines;  // to locate a stage's refusal below
   // The platform (altitude, ground speed) is optional: space-to-space sensors need none.
-  if (const ConfigValue* platform = root.find("platform")) build_stage(chain, "platform", *platform, path);
+  if (const ConfigValue* platform = root.find("platform")) {
+    build_stage(chain, "platform", *platform, path);
+    section_lines.emplace_back("platform", platform->where);
+  }
+  bool has_light = false;
+  for (const auto& section : light_sections) has_light = has_light || root.find(section);
   for (const auto& section : stage_sections) {
     const ConfigValue* table = root.find(section);
+    const bool light = std::find(light_sections.begin(), light_sections.end(), section) != light_sections.end();
+    if (!table && light && !has_light) continue;
     if (!table)
       throw InputError(SourceLocation{path, 0, 0}, "sensor file", "[" + section + "]",
-                       fmt::format("missing section: every sensor has {}", join(stage_sections)));
+                       light ? fmt::format("missing section: a file with light has {} (a geometry-only file has none of them)",
+                                           join(light_sections))
+                             : std::string("missing section: every sensor has optics, detector"));
     build_stage(chain, section, *table, path);
+    section_lines.emplace_back(section, table->where);
   }
   std::vector<std::string> criteria;
   if (const ConfigValue* table = root.find("criteria")) {
     require_table(*table, "criteria");
     for (const auto& [name, criterion] : table->members) {
       build_stage(chain, "criteria." + name, criterion, path);
+      section_lines.emplace_back("criteria." + name, criterion.where);
       criteria.push_back(name);
     }
   }
@@ -231,8 +246,16 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
     }
   }
 
-  // The spectral phase declares every result; [expected] is checked against those names.
-  chain.evaluate();
+  // The spectral phase declares every result; [expected] is checked against those names. A stage's refusal
+  // there (a chain that does not fit, no light) names its section; the file's line of that section locates it.
+  try {
+    chain.evaluate();
+  } catch (const InputError& error) {
+    if (!error.where().file.empty()) throw;
+    for (const auto& [section, where] : section_lines)
+      if (error.context().starts_with(section + " (")) throw error.with_location(where);
+    throw;
+  }
   // (Solved unknowns become results too.)
   {
     std::vector<ResultId> ids;
