@@ -15,7 +15,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <numbers>
 #include <ostream>
 
@@ -262,7 +261,6 @@ Uncertainty run_uncertainty(const UncertaintyOptions& options) {
     std::vector<SolveOutcome> outcomes;
   };
   std::vector<std::unique_ptr<Worker>> workers(worker_slots());
-  std::mutex load_mutex;
   run_batch(
       n, 16384, 16,
       [&](std::size_t slot, std::size_t begin, std::size_t end) {
