@@ -18,6 +18,12 @@
 // Sky: an atmosphere publishing atmosphere.sky_brightness (AB mag/arcsec², as measured at the site) is counted
 // by étendue: B = t · A τ Ω_pix · 10^{-0.4 m_sky} ∫ (3631 Jy)/(hλ) η(λ) dλ, the AB zero point through this
 // detector's band and QE (Oke & Gunn 1983; the sky's spectrum taken as flat in f_ν over the band).
+// MOVING TARGETS (issue 13 item 7; physics/streak.hpp): a target crossing the field at `target_rate` ω (relative
+// to the stars) streaks over L = ω t f' per exposure under sidereal tracking (`tracking = "sidereal"`); under
+// rate tracking the target is a point and the stars streak by L. PSF-weighted photometry of the streak is the
+// matched filter along it: n_eff = 1/Σ f_ij² of the Gaussian PSF ⊗ the segment on the (binned) pixel grid, which
+// then enters the noise and PRNU terms above; the peak pixel is the streak's; trailing loss
+// 1.25 lg(n_eff,streak/n_eff,static) (background-limited; Jones et al. 2018, Icarus 303, 181).
 // SATURATION (EMVA §2.3, saturation capacity μ_e.sat): the brightest native pixel's charge in one exposure,
 // f_peak S_img,1 + N_tdi (B_native + μ_I t) (f_peak: the PSF's fraction in the pixel it is centred on), over
 // min(μ_e.sat, (2^bits − 1)/K), is detector.peak_pixel_fill; the criterion "unsaturated" fails when it exceeds 1.
@@ -45,6 +51,7 @@
 #include "radchain/physics/emva1288.hpp"
 #include "radchain/physics/photometry.hpp"
 #include "radchain/physics/psf.hpp"
+#include "radchain/physics/streak.hpp"
 #include "radchain/plugin.hpp"
 
 #include <algorithm>
@@ -94,6 +101,11 @@ const Schema& schema() {
           .described("side n of the n×n window in (binned) pixels (photometry = \"window\")"),
       number("ensquared_energy", "0.8").above(0).at_most(1)
           .described("fraction of the point image in the window (default: from the PSF, else 1)"),
+      quantity("target_rate", "rad/s", "15 arcsec/s").at_least(0)
+          .described("angular rate ω of a point target across the sky relative to the stars (a moving target streaks)"),
+      choice("tracking", {"sidereal", "rate"}).fallback("sidereal")
+          .described("sidereal: the telescope follows the stars and the target streaks; rate: it follows the "
+                     "target, which stays a point while the stars streak"),
       quantity("reference_radiance", "W m-2 sr-1 m-1", "108 W m-2 sr-1 um-1").above(0)
           .described("extended scenes: band-averaged spectral radiance L_ref of the SNR requirement (mission "
                      "convention, e.g. Sentinel-2 L_ref; default: the scene's own radiance)"),
@@ -118,13 +130,20 @@ class Emva1288 final : public Stage {
         other_(p.handle("other_noise")), bits_(p.handle("adc_bits")), binning_(p.handle("binning")),
         exposures_(p.handle("exposures")), tdi_(p.handle("tdi_stages")), pitch_(p.handle("pixel_pitch")),
         window_(p.handle("window_pixels")), ensquared_(p.handle("ensquared_energy")),
-        psf_photometry_(p.text("photometry") == "psf"), reference_radiance_(p.handle("reference_radiance")),
+        psf_photometry_(p.text("photometry") == "psf"), rate_(p.handle("target_rate")),
+        moving_(p.given("target_rate")), rate_tracking_(p.text("tracking") == "rate"),
+        reference_radiance_(p.handle("reference_radiance")),
         reference_reflectance_(p.handle("reference_reflectance")) {
     if (!(p.get("band_max") > p.get("band_min"))) p.reject("band_max", "must be larger than band_min");
     if (psf_photometry_ && p.given("window_pixels"))
       p.reject("window_pixels", "is used only with photometry = \"window\" (PSF-weighted photometry uses n_eff pixels)");
     if (psf_photometry_ && p.given("ensquared_energy"))
       p.reject("ensquared_energy", "is used only with photometry = \"window\"");
+    if (moving_ && !psf_photometry_)
+      p.reject("target_rate", "a streak is measured by PSF-weighted photometry along it: set photometry = \"psf\"");
+    if (moving_ && p.get("tdi_stages") > 1)
+      p.reject("target_rate", "a moving target in a TDI camera is not modelled (give tdi_stages = 1)");
+    if (p.given("tracking") && !moving_) p.reject("tracking", "needs the target's target_rate");
   }
 
   void prepare(Context& c) override {
@@ -175,6 +194,8 @@ class Emva1288 final : public Stage {
     if (psf_photometry_ && !seeing_ && !gaussian_fwhm_ && !(psf_wavelength_ && f_number_))
       params_.reject("photometry", "photometry = \"psf\" needs a PSF: seeing from the atmosphere or psf = \"airy\"/"
                                    "\"gaussian\" in the optics");
+    if (moving_ && !focal_length_)
+      params_.reject("target_rate", "a rate in angle needs the optics' focal_length to give the streak on the pixels");
 
     id_image_ = c.declare(vocabulary::detector_image_electrons, "S_img = M N_tdi t ∫ P_λ η λ/(hc) dλ (EMVA 1288 eq. 1)", "e-");
     id_signal_ = c.declare(vocabulary::detector_signal_electrons,
@@ -197,7 +218,7 @@ class Emva1288 final : public Stage {
     id_sky_ = c.declare(vocabulary::detector_sky_electrons_per_pixel,
                         "B = N_tdi b² t A τ Ω_pix 10^{-0.4 m_sky} ∫ f_ν,AB η/(hλ) dλ per binned pixel and frame", "e-");
     id_peak_fraction_ = c.declare("peak_pixel_fraction", "1", "fraction of the point image in the brightest native pixel");
-    id_psf_fwhm_ = c.declare("psf_fwhm", "m", "Gaussian PSF FWHM on the focal plane (seeing ⊕ diffraction)", "um");
+    id_psf_fwhm_ = c.declare(vocabulary::detector_psf_fwhm, "Gaussian PSF FWHM on the focal plane (seeing ⊕ diffraction)", "um");
     id_quant_ = c.declare("quantisation_noise", "electron", "σ_q/K = 1/(√12 K) per pixel (EMVA eq. 5)", "e-");
     id_dark_ = c.declare("dark_electrons", "electron", "n_pix b² N_tdi μ_I t per frame", "e-");
     id_read_noise_ = c.declare("read_noise", "electron", "√(n_pix b² σ_d0²) per frame", "e-");
@@ -206,6 +227,22 @@ class Emva1288 final : public Stage {
     id_prnu_noise_ = c.declare("prnu_noise", "electron", "M s_g S₁/√n_eff", "e-");
     id_ab_zero_ = c.declare("ab_zero_point_electron_rate", "m-2 s-1",
                             "electrons s-1 m-2 of AB magnitude 0 through the band and QE (before optics)", "cm-2 s-1");
+    // What `radchain render` draws a frame with (docs/rendering.md): the pixel as read out, its read noise and dark.
+    id_pitch_ = c.declare(vocabulary::detector_pixel_pitch, "b p: the (binned) pixel as read out", "um");
+    id_bits_ = c.declare(vocabulary::detector_adc_bits, "input");
+    id_dark_rate_ = c.declare(vocabulary::detector_dark_rate, "b² μ_I per (binned) pixel", "e-/s");
+    id_read_pixel_ = c.declare(vocabulary::detector_read_noise_per_pixel, "b √(σ_d0² + σ_other²) per (binned) pixel", "e-");
+    if (moving_) {
+      id_target_streak_ = c.declare(vocabulary::detector_target_streak_pixels,
+                                    rate_tracking_ ? "0: rate tracking holds the target still" : "ω t f' / (b p) (sidereal tracking)");
+      id_star_streak_ = c.declare(vocabulary::detector_star_streak_pixels,
+                                  rate_tracking_ ? "ω t f' / (b p) (rate tracking)" : "0: sidereal tracking holds the stars still");
+      id_streak_angle_ = c.declare("streak_length", "rad", "ω t: the target's trail on the sky per exposure (0 under rate tracking)",
+                                   "arcsec");
+      id_static_neff_ = c.declare("static_noise_equivalent_area", "1", "n_eff of the PSF without the motion (physics/emva1288.hpp)");
+      id_trailing_loss_ = c.declare(vocabulary::detector_trailing_loss,
+                                    "1.25 lg(n_eff,streak / n_eff,static), background-limited (Jones et al. 2018)");
+    }
   }
 
   void evaluate(Context& c) override {
@@ -245,6 +282,13 @@ class Emva1288 final : public Stage {
     }
     if (params_.given("ensquared_energy")) ensquared = *ensquared_;
     if (psf_photometry_) ensquared = 1.0;
+    // A moving target: the PSF (as the Gaussian of the n_eff above) convolved with its streak (physics/streak.hpp).
+    const double static_neff = neff, streak_m = moving_ ? *rate_ * t * opt(focal_length_) : 0.0;
+    if (moving_ && !rate_tracking_ && streak_m > 0) {
+      const double psf = fwhm > 0 ? fwhm : physics::diffraction_fwhm_rad(a.value(*psf_wavelength_), 1.0) * a.value(*f_number_);
+      neff = physics::streak_noise_equivalent_area_px(psf / binned, streak_m / binned);
+      peak_fraction = physics::streak_peak_pixel_fraction(psf / pitch, streak_m / pitch);
+    }
 
     const double image1 = a.signal_scale() * qe * photon_rate_per_scale_ * t * tdi;  // one frame, all pixels
     const double signal1 = ensquared * image1;
@@ -279,6 +323,17 @@ class Emva1288 final : public Stage {
     a.set(id_sky_, sky_binned);
     a.set(id_pixels_, pixels);
     a.set(id_neff_, neff);
+    a.set(id_pitch_, binned);
+    a.set(id_bits_, *bits_);
+    a.set(id_dark_rate_, b * b * *dark_current_);
+    a.set(id_read_pixel_, b * std::hypot(*dark_noise_, *other_));
+    if (moving_) {
+      a.set(id_target_streak_, rate_tracking_ ? 0.0 : streak_m / binned);
+      a.set(id_star_streak_, rate_tracking_ ? streak_m / binned : 0.0);
+      a.set(id_streak_angle_, rate_tracking_ ? 0.0 : *rate_ * t);
+      a.set(id_static_neff_, static_neff);
+      a.set(id_trailing_loss_, physics::trailing_loss_mag(neff, static_neff));
+    }
     if (!a.full_detail()) return;
     a.set(id_image_, m * image1);
     a.set(id_ensquared_, ensquared);
@@ -432,6 +487,9 @@ class Emva1288 final : public Stage {
   const double *qe_, *time_, *gain_, *dark_noise_, *saturation_, *dark_current_, *prnu_, *dsnu_, *other_, *bits_,
       *binning_, *exposures_, *tdi_, *pitch_, *window_, *ensquared_;
   bool psf_photometry_;
+  const double* rate_;
+  bool moving_, rate_tracking_;
+  ResultId id_bits_{}, id_dark_rate_{}, id_read_pixel_{}, id_target_streak_{}, id_star_streak_{}, id_streak_angle_{}, id_static_neff_{}, id_trailing_loss_{};
   bool extended_ = false, reference_given_ = false, reference_from_reflectance_ = false;
   const double *reference_radiance_, *reference_reflectance_;
   double photon_rate_per_scale_ = 0, ab_electrons_per_m2_s_ = 0, flat_photon_integral_ = 0;
@@ -464,7 +522,10 @@ RADCHAIN_PLUGIN(Emva1288, {
                   vocabulary::detector_tdi_stages, vocabulary::detector_pixel_pitch, vocabulary::detector_scene_radiance,
                   vocabulary::detector_reference_radiance, vocabulary::detector_reference_signal_electrons,
                   vocabulary::detector_snr_at_reference, vocabulary::detector_noise_equivalent_radiance,
-                  vocabulary::detector_noise_equivalent_reflectance, vocabulary::detector_saturation_radiance},
+                  vocabulary::detector_noise_equivalent_reflectance, vocabulary::detector_saturation_radiance,
+                  vocabulary::detector_target_streak_pixels, vocabulary::detector_star_streak_pixels,
+                  vocabulary::detector_trailing_loss, vocabulary::detector_psf_fwhm, vocabulary::detector_adc_bits,
+                  vocabulary::detector_dark_rate, vocabulary::detector_read_noise_per_pixel},
     .needs = {if_present(vocabulary::optics_psf_wavelength), if_present(vocabulary::optics_gaussian_fwhm),
               if_present(vocabulary::optics_f_number), if_present(vocabulary::optics_obscuration),
               if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_aperture),

@@ -76,6 +76,9 @@ const Case cases[] = {
     {"band_outside_sed"},
     {"band_outside_qe_curve"},
     {"reference_radiance_negative"},
+    {"streak_negative_rate"},
+    {"streak_unknown_tracking"},
+    {"streak_window_photometry"},
 };
 
 // How a case reads in test names and ctest listings (instead of a byte dump).

@@ -5,6 +5,7 @@
 #include "radchain/constants.hpp"
 #include "radchain/physics/emva1288.hpp"
 #include "radchain/physics/magnitudes.hpp"
+#include "radchain/physics/streak.hpp"
 #include "radchain/spectrum_csv.hpp"
 
 #include <gtest/gtest.h>
@@ -192,6 +193,61 @@ TEST(Emva1288Chain, RubinLsstRBandDepth) {
   const double area = std::numbers::pi / 4 * 6.423 * 6.423;
   const double sky = 30 * area * 0.2 * 0.2 * std::pow(10.0, -0.4 * 21.2) * rate;
   EXPECT_NEAR(v("detector.sky_electrons_per_pixel") / sky, 1.0, 1e-3);
+}
+
+// Moving targets (physics/streak.hpp): a target at 20 µrad/s on 1 m focal length trails 20 µm = 4 pixels in 1 s.
+// Sidereal tracking: n_eff of the streaked PSF (FWHM 2 px) enters the noise; rate tracking and a zero rate give
+// the static chain's numbers exactly; the trailing loss is 1.25 lg(n_eff ratio).
+TEST(Emva1288Chain, StreakNoiseEquivalentAreaAndTrailingLoss) {
+  const std::string det = "dark_noise = \"3 e-\"\nphotometry = \"psf\"\n";
+  const Report still = run(write_sensor("still", "magnitude = 12", det));
+  const Report streak = run(write_sensor("streak", "magnitude = 12", det + "target_rate = \"20 urad/s\"\n"));
+  const Report tracked = run(write_sensor("tracked", "magnitude = 12", det + "target_rate = \"20 urad/s\"\ntracking = \"rate\"\n"));
+  const Report zero = run(write_sensor("zero", "magnitude = 12", det + "target_rate = \"0 urad/s\"\n"));
+  auto v = [](const Report& r, const std::string& n) { return r.value(n).value(); };
+  using namespace radchain::physics;
+  const double neff = streak_noise_equivalent_area_px(2.0, 4.0), neff0 = gaussian_noise_equivalent_area_px(2.0);
+  EXPECT_NEAR(v(streak, "detector.noise_equivalent_area"), neff, 1e-9 * neff);
+  EXPECT_NEAR(v(streak, "detector.static_noise_equivalent_area"), neff0, 1e-12);
+  EXPECT_NEAR(v(streak, "detector.target_streak_pixels"), 4.0, 1e-12);
+  EXPECT_NEAR(v(streak, "detector.streak_length"), 20e-6, 1e-18);
+  EXPECT_NEAR(v(streak, "detector.trailing_loss"), 1.25 * std::log10(neff / neff0), 1e-12);
+  // The noise by hand: S + n_eff (σ_d0² + 1/(12K²)), no sky, no dark.
+  const double s = v(streak, "detector.signal_electrons");
+  EXPECT_NEAR(s, v(still, "detector.signal_electrons"), 0);  // the streak moves the light, it does not lose it
+  const double noise = std::sqrt(s + neff * (9 + 1 / (12 * 0.25)));
+  EXPECT_NEAR(v(streak, "detector.snr"), s / noise, 1e-9 * s / noise);
+  EXPECT_LT(v(streak, "detector.snr"), v(still, "detector.snr"));
+  // Saturation sees the streak's brightest pixel.
+  EXPECT_NEAR(v(streak, "detector.peak_pixel_electrons") / v(still, "detector.peak_pixel_electrons"),
+              streak_peak_pixel_fraction(2.0, 4.0) / gaussian_peak_pixel_fraction(2.0), 1e-9);
+  // Rate tracking: the target is a point (the static numbers), the stars trail the 4 pixels.
+  for (const Report* r : {&tracked, &zero}) {
+    EXPECT_EQ(v(*r, "detector.snr"), v(still, "detector.snr"));
+    EXPECT_EQ(v(*r, "detector.noise_equivalent_area"), v(still, "detector.noise_equivalent_area"));
+    EXPECT_EQ(v(*r, "detector.trailing_loss"), 0.0);
+  }
+  EXPECT_NEAR(v(tracked, "detector.star_streak_pixels"), 4.0, 1e-12);
+  EXPECT_EQ(v(tracked, "detector.target_streak_pixels"), 0.0);
+}
+
+// examples/rubin-geo-streak.toml: a GEO satellite (15.041"/s) in a 30 s Rubin r visit trails 451.2" = 2256 px;
+// long against the 0.83" seeing, so n_eff ≈ L · 2√π σ' (streak_test.cpp) and the limiting magnitude is that of
+// sensors/rubin-lsst-r-m5.toml minus the trailing loss at the limit, exactly when sky-dominated.
+TEST(Emva1288Chain, RubinGeoStreakExample) {
+  Chain chain = load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/examples/rubin-geo-streak.toml");
+  const Report r = chain.run();
+  ASSERT_TRUE(r.solves.at(0).converged);
+  auto v = [&](const std::string& n) { return r.value(n).value(); };
+  EXPECT_NEAR(v("detector.target_streak_pixels"), 15.041 * 30 / 0.2, 1e-3 * 2256);  // 0.2"/pixel (10 µm / 10.31 m)
+  const double sigma_px = std::sqrt(std::pow(0.83 / 0.2 / 2.354820045, 2) + 1.0 / 12);
+  EXPECT_NEAR(v("detector.noise_equivalent_area") / (v("detector.target_streak_pixels") * 2 * std::sqrt(std::numbers::pi) * sigma_px),
+              1.0, 3e-3);
+  Chain still = load_sensor(sensors + "rubin-lsst-r-m5.toml");
+  const double m5 = still.run().solves.at(0).value_si;
+  // The read noise and dark over n_eff move it by a little more than the sky alone would (≤ 0.02 mag).
+  EXPECT_NEAR(m5 - r.solves.at(0).value_si, v("detector.trailing_loss"), 0.02);
+  EXPECT_GT(v("detector.trailing_loss"), 3.0);
 }
 
 }  // namespace

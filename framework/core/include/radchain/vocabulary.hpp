@@ -125,6 +125,15 @@ inline constexpr Term atmosphere_airmass{"atmosphere.airmass", "1", "airmass X o
 inline constexpr Term atmosphere_seeing_fwhm{"atmosphere.seeing_fwhm", "rad", "seeing FWHM at the line of sight's airmass"};
 inline constexpr Term atmosphere_sky_brightness{"atmosphere.sky_brightness", "1",
                                                 "sky surface brightness in AB mag/arcsec² as measured at the site"};
+// Moving targets (issue 13 item 7): streak lengths per exposure and the PSF they smear, for render and validate
+inline constexpr Term detector_target_streak_pixels{"detector.target_streak_pixels", "1",
+                                                    "length of the moving target's streak per exposure in pixels as read out (binned)"};
+inline constexpr Term detector_star_streak_pixels{"detector.star_streak_pixels", "1",
+                                                  "length of the stars' streaks per exposure in pixels as read out (rate tracking)"};
+inline constexpr Term detector_trailing_loss{"detector.trailing_loss", "1",
+                                             "magnitudes a streak loses against the still PSF, background-limited"};
+inline constexpr Term detector_psf_fwhm{"detector.psf_fwhm", "m",
+                                        "FWHM of the Gaussian PSF on the focal plane that the detector counts with"};
 
 // every criterion ("criteria.<name>.…")
 inline constexpr Term criterion_margin{"criteria.*.margin", "1",
@@ -200,6 +209,8 @@ inline constexpr std::array all{
     detector_peak_pixel_fill, detector_saturation_capacity, detector_peak_pixel_electrons,
     detector_noise_equivalent_area, detector_system_gain, detector_tdi_stages, target_zero_point_photon_rate,
     target_band_magnitude, atmosphere_airmass, atmosphere_seeing_fwhm, atmosphere_sky_brightness,
+    // Moving targets (issue 13 item 7)
+    detector_target_streak_pixels, detector_star_streak_pixels, detector_trailing_loss, detector_psf_fwhm,
 };
 
 // The term a qualified result name is, if any.
