@@ -84,6 +84,7 @@ int main(int argc, char** argv) {
   cat_cmd->add_option("--results", catalogue.results, "more results to show per sensor (comma-separated)")->delimiter(',');
   cli::add_output(cat_cmd, catalogue.output, "text (default), csv or json");
   cli::add_no_solve(cat_cmd, catalogue.no_solve);
+  cat_cmd->add_flag("--tables", catalogue.tables, "also compute each file's [[table]] entries (e.g. limiting magnitude vs exposure), a row per cell");
   cli::add_solver(cat_cmd, catalogue.solver);
   cli::add_batch(cat_cmd, catalogue.batch);
 
@@ -161,7 +162,7 @@ int main(int argc, char** argv) {
   std::string describe_name;
   auto* describe_cmd = app.add_subcommand(
       "describe", "a plugin's keys, units, defaults, ranges, results and a TOML example; a kind's plugins; a sensor-file table");
-  describe_cmd->add_option("what", describe_name, "plugin name, path to a plugin .so, kind (criterion, ...), sensor, solve, expected, render or validate")
+  describe_cmd->add_option("what", describe_name, "plugin name, path to a plugin .so, kind (criterion, ...), sensor, solve, expected, table, render or validate")
       ->required();
 
   try {

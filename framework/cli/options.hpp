@@ -42,6 +42,7 @@ struct CatalogueCommand {
   std::vector<std::string> inputs;
   std::vector<std::string> sets;
   bool no_solve = false;
+  bool tables = false;
   std::string solver = "auto";
   std::vector<std::string> results;
   Output output;

@@ -126,3 +126,35 @@ TEST(Catalogue, FilesOfAFolderAreSorted) {
 }
 
 }  // namespace
+
+namespace {
+using namespace radchain;
+using namespace radchain::test;
+
+// --tables: each [[table]] cell is a row without a check (the summary counts the same checks); without it the
+// tables are not computed at all. The cells equal `radchain run`'s table (Rubin r: m5 at 6 exposures × 3 results).
+TEST(Catalogue, TablesAreRowsOnlyWhenAskedFor) {
+  Scratch scratch;
+  const std::string rubin_r = source_dir + "/sensors/rubin-lsst-r-m5.toml";
+  const CliResult plain = run_cli(scratch, "catalogue --format csv '" + rubin_r + "'");
+  const CliResult tables = run_cli(scratch, "catalogue --tables --format csv '" + rubin_r + "'");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(tables.exit_code, 0) << tables.err;
+  EXPECT_EQ(plain.out.find(" @ "), std::string::npos);
+  EXPECT_EQ(count_lines(tables.out), count_lines(plain.out) + 6 * 3);
+  const std::string cell = "target.magnitude @ detector.integration_time = 300 s,";
+  ASSERT_NE(tables.out.find(cell), std::string::npos) << tables.out;
+
+  const CliResult run = run_cli(scratch, "run --format json '" + rubin_r + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto json = nlohmann::json::parse(run.out);
+  const auto& table = json["tables"][0];
+  ASSERT_EQ(table["values"].back(), "300 s");
+  const double m5_300 = table["rows_si"].back()[0].get<double>();
+  std::istringstream row(tables.out.substr(tables.out.find(cell) + cell.size()));
+  double computed_cell = 0;
+  row >> computed_cell;
+  EXPECT_NEAR(computed_cell, m5_300, 1e-4);  // the cell prints 6 significant digits
+}
+
+}  // namespace

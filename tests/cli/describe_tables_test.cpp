@@ -12,7 +12,8 @@ TEST(DescribeTables, EachTableListsTheKeysItsSchemaAccepts) {
   Scratch scratch;
   const std::pair<const char*, radchain::Schema> tables[] = {{"sensor", radchain::sensor_table_schema()},
                                                              {"solve", radchain::solve_entry_schema()},
-                                                             {"expected", radchain::expected_entry_schema()}};
+                                                             {"expected", radchain::expected_entry_schema()},
+                                                             {"table", radchain::table_entry_schema()}};
   for (const auto& [name, schema] : tables) {
     const CliResult r = run_cli(scratch, std::string("describe ") + name);
     EXPECT_EQ(r.exit_code, 0) << name << ": " << r.err;

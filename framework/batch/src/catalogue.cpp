@@ -158,6 +158,18 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
     }
     rows.push_back(std::move(row));
   }
+
+  // [[table]] cells: "target.magnitude @ detector.integration_time = 30 s"; no check (a failed row says why).
+  for (const auto& t : report.tables)
+    for (std::size_t r = 0; r < t.rows.size(); ++r)
+      for (std::size_t c = 0; c < t.columns.size(); ++c) {
+        auto row = empty_row(stem);
+        row[result] = fmt::format("{} @ {} = {}", t.columns[c].name, t.spec.vary, t.spec.values_written[r]);
+        if (!std::isnan(t.rows[r][c])) row[computed] = value6(t.rows[r][c] * t.columns[c].display_factor);
+        row[unit] = unit_cell(t.columns[c].display_unit);
+        row[note] = t.notes[r].empty() ? "table \"" + t.spec.name + "\"" : "table \"" + t.spec.name + "\": " + t.notes[r];
+        rows.push_back(std::move(row));
+      }
   if (rows.empty()) {
     auto row = empty_row(stem);
     row[note] = "no [expected] references and no [[solve]] (add --results to show results)";
@@ -203,6 +215,7 @@ int run_catalogue(const std::vector<std::string>& files, const CatalogueOptions&
           try {
             Chain chain = load_sensor(file, options.overrides);
             if (options.no_solve) chain.solves.clear();
+            if (!options.tables) chain.tables.clear();
             chain.solver = options.solver;
             const Report report = chain.run();
             out.rows = catalogue_rows(file, report, options.extra_results);
@@ -234,6 +247,7 @@ std::string catalogue_job(const std::vector<std::string>& files, const Catalogue
   for (const auto& o : options.overrides) job += "set " + o.key + "=" + o.value + "\n";
   for (const auto& r : options.extra_results) job += "result " + r + "\n";
   if (options.no_solve) job += "no-solve\n";
+  if (options.tables) job += "tables\n";
   if (options.solver == SolverChoice::root) job += "solver root\n";
   return job;
 }

@@ -1,7 +1,7 @@
 // `radchain describe <plugin>`: a plugin's keys, units, defaults, ranges, the results it publishes and needs
 // (its contract with the other stages, radchain/vocabulary.hpp), and a TOML example.
 // `radchain describe <kind>` ("criterion", or its section "criteria"): the plugins of that kind, one line each.
-// `radchain describe sensor | solve | expected | render | validate`: a sensor file's own tables, an imaging command's options.
+// `radchain describe sensor | solve | expected | table | render | validate`: a sensor file's own tables, an imaging command's options.
 #include "../commands.hpp"
 #include "../option_schema.hpp"
 
@@ -91,7 +91,7 @@ void print_description(const PluginInfo& info, const std::string& path) {
   }
 }
 
-// The sensor file's own tables, `radchain describe sensor | solve | expected` (radchain/sensor_file.hpp), and the
+// The sensor file's own tables, `radchain describe sensor | solve | expected | table` (radchain/sensor_file.hpp), and the
 // options of the imaging commands, `radchain describe render | validate` (option_schema.hpp).
 bool print_file_table(const std::string& name) {
   if (name == "sensor") {
@@ -107,6 +107,12 @@ bool print_file_table(const std::string& name) {
     print_keys(expected_entry_schema());
     fmt::print("\nexample:\n[expected]\n\"optics.focal_length\" = {{ value = \"832 mm\", tolerance = \"1 mm\", "
                "source = \"Kolobrodov 1996, p. 4\" }}   # value, follows, tolerance in the result's unit\n");
+  } else if (name == "table") {
+    fmt::print("[[table]] — the [[solve]] entries (or named results) again at each value of one parameter, printed by run and "
+               "catalogue --tables\n\nkeys:\n");
+    print_keys(table_entry_schema());
+    fmt::print("\nexample:\n[[table]]\nname = \"limiting magnitude vs exposure\"\nvary = \"detector.integration_time\"\n"
+               "values = [\"1 s\", \"10 s\", \"30 s\", \"100 s\"]   # in the varied parameter's unit\n");
   } else if (name == "render" || name == "validate") {
     fmt::print("radchain {} — options with units, limits or fixed choices (validated like a sensor file's keys)\n\noptions:\n", name);
     print_keys(name == "render" ? render_option_schema() : validate_option_schema());
@@ -158,7 +164,7 @@ int describe(const std::string& name) {
   for (const auto& f : PluginHost::instance().discover()) names.push_back(f.name);
   std::vector<std::string> kind_names;
   for (const KindInfo& k : kinds) kind_names.emplace_back(k.name);
-  const std::vector<std::string> tables = {"sensor", "solve", "expected", "render", "validate"};
+  const std::vector<std::string> tables = {"sensor", "solve", "expected", "table", "render", "validate"};
   std::vector<std::string> candidates = names;
   candidates.insert(candidates.end(), kind_names.begin(), kind_names.end());
   candidates.insert(candidates.end(), tables.begin(), tables.end());

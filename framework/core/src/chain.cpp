@@ -224,7 +224,39 @@ Report Chain::run() {
     }
     report.expectations.push_back(outcome);
   }
+  for (const TableSpec& table : tables) report.tables.push_back(tabulate(table));
   return report;
+}
+
+TableOutcome Chain::tabulate(const TableSpec& table) {
+  TableOutcome out;
+  out.spec = table;
+  std::vector<ResultId> ids;
+  for (const std::string& name : table.results) {
+    const auto id = results_.find(name);
+    if (!id) throw std::out_of_range("[[table]] result " + name);  // sensor_file.cpp validated the names
+    ids.push_back(*id);
+    out.columns.push_back(results_.info(*id));
+  }
+  const ParameterRef varied = parameter(table.vary);
+  const double original = varied.value();
+  std::vector<SolveOutcome> outcomes;
+  for (const double value : table.values_si) {
+    set(varied, value);
+    solve_all(outcomes);
+    std::string note;
+    for (const SolveOutcome& s : outcomes)
+      if (!s.converged) note += (note.empty() ? "" : "; ") + s.spec.unknown + ": " + s.message;
+    // A row whose solve failed has no values: the others were computed at the bracket end the solver left.
+    std::vector<double> row;
+    for (const ResultId id : ids) row.push_back(note.empty() ? results_.value(id) : std::numeric_limits<double>::quiet_NaN());
+    out.rows.push_back(std::move(row));
+    out.notes.push_back(std::move(note));
+  }
+  // Back to the file's value: the same solves again leave the chain as run() did before the table.
+  set(varied, original);
+  solve_all(outcomes);
+  return out;
 }
 
 }  // namespace radchain

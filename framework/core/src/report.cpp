@@ -74,6 +74,31 @@ std::string format_report_text(const Report& report) {
                          e.spec.result, display_of_expectation(e), computed, delta, e.spec.source);
     }
   }
+  for (const auto& t : report.tables) out += format_table_text(t);
+  return out;
+}
+
+// table "limiting magnitude vs exposure":
+//   detector.integration_time  target.magnitude [1]
+//   1 s                                   21.83
+std::string format_table_text(const TableOutcome& table) {
+  std::vector<std::vector<std::string>> cells;  // header, then one row per value
+  cells.push_back({table.spec.vary});
+  for (const auto& c : table.columns) cells[0].push_back(c.display_unit == "1" ? c.name : c.name + " [" + c.display_unit + "]");
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    cells.push_back({table.spec.values_written[r]});
+    for (std::size_t c = 0; c < table.columns.size(); ++c) cells.back().push_back(format_value(table.rows[r][c], table.columns[c]));
+  }
+  std::vector<std::size_t> width(cells[0].size(), 0);
+  for (const auto& row : cells)
+    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+  std::string out = fmt::format("table \"{}\":\n", table.spec.name);
+  for (std::size_t r = 0; r < cells.size(); ++r) {
+    std::string line = fmt::format("  {:<{}}", cells[r][0], width[0]);
+    for (std::size_t c = 1; c < cells[r].size(); ++c) line += fmt::format("  {:>{}}", cells[r][c], width[c]);
+    if (r > 0 && !table.notes[r - 1].empty()) line += "  (" + table.notes[r - 1] + ")";
+    out += line + "\n";
+  }
   return out;
 }
 
@@ -106,6 +131,20 @@ std::string format_report_json(const Report& report) {
                             {"follows_si", e.spec.follows_si ? nlohmann::ordered_json(*e.spec.follows_si) : nlohmann::ordered_json()},
                             {"computed_si", e.computed_si}, {"tolerance_si", e.spec.tolerance_si},
                             {"rel_tolerance", e.spec.rel_tolerance}, {"passed", e.passed}, {"source", e.spec.source}});
+  auto& tables = j["tables"] = nlohmann::ordered_json::array();
+  for (const auto& t : report.tables) {
+    nlohmann::ordered_json table{{"name", t.spec.name}, {"vary", t.spec.vary}, {"values", t.spec.values_written},
+                                 {"values_si", t.spec.values_si}};
+    auto& columns = table["columns"] = nlohmann::ordered_json::array();
+    for (const auto& c : t.columns) columns.push_back({{"name", c.name}, {"unit", c.display_unit}, {"si_unit", c.si_unit}});
+    auto& rows = table["rows_si"] = nlohmann::ordered_json::array();
+    for (const auto& row : t.rows) {
+      auto& out = rows.emplace_back(nlohmann::ordered_json::array());
+      for (const double v : row) out.push_back(std::isnan(v) ? nlohmann::ordered_json() : nlohmann::ordered_json(v));
+    }
+    table["notes"] = t.notes;
+    tables.push_back(std::move(table));
+  }
   j["passed"] = report.all_passed();
   return j.dump(2) + "\n";
 }

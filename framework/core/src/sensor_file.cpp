@@ -20,7 +20,7 @@ const std::vector<std::string> stage_sections = {"source", "atmosphere", "target
 // none of them, and a stage that needs light then refuses, located at its own section.
 const std::vector<std::string> light_sections = {"source", "atmosphere", "target"};
 const std::vector<std::string> top_level_keys = {"sensor", "platform", "source", "target", "atmosphere", "optics",
-                                                 "detector", "criteria", "solve", "expected"};
+                                                 "detector", "criteria", "solve", "expected", "table"};
 
 void apply_override(ConfigValue& root, const Override& o) {
   const SourceLocation where{"--set", 0, 0};
@@ -130,6 +130,7 @@ void build_stage(Chain& chain, const std::string& section, const ConfigValue& ta
 
 // The sensor file as parsed (a file or text named `path`) -> Chain: what load_sensor and load_sensor_text share.
 static Chain build_sensor(ConfigValue root, const std::string& path, const std::vector<Override>& overrides);
+static void read_tables(Chain& chain, const ConfigValue& tables, const std::string& path);
 
 Chain load_sensor(const std::string& path, const std::vector<Override>& overrides) {
   return build_sensor(parse_toml_file(path), path, overrides);
@@ -306,7 +307,78 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
       chain.expected.push_back(e);
     }
   }
+
+  if (const ConfigValue* tables = root.find("table")) read_tables(chain, *tables, path);
   return chain;
+}
+
+// [[table]] entries: validated after the spectral phase, when every result name is known.
+static void read_tables(Chain& chain, const ConfigValue& tables, const std::string& path) {
+  constexpr std::size_t max_rows = 1000;  // a table is read by people; a grid belongs to `radchain sweep`
+  if (tables.type != ConfigValue::Type::array)
+    throw InputError(tables.where, "[[table]]", "", "expected [[table]] entries (an array of tables)");
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < chain.results().size(); ++i) names.push_back(chain.results().info(i).name);
+  for (const auto& entry : tables.items) {
+    if (entry.type != ConfigValue::Type::table)
+      throw InputError(entry.where, "[[table]]", "", "expected a table of vary, values and results, found " + entry.type_name());
+    // The values' unit is the varied parameter's: find it first, then validate the entry against its schema.
+    const ConfigValue* vary = entry.find("vary");
+    if (!vary || vary->type != ConfigValue::Type::string) {
+      const ParamSpec& spec_of_vary = table_entry_schema()[1];
+      throw InputError(vary ? vary->where : entry.where, "[[table]]", vary ? "vary = " + vary->as_toml() : "vary",
+                       fmt::format("{}{} ({})", vary ? "" : "missing required key: ", spec_of_vary.expected_text(), spec_of_vary.doc));
+    }
+    TableSpec table;
+    table.where = entry.where;
+    table.vary = vary->string_value;
+    try {
+      (void)chain.parameter(table.vary);
+    } catch (const std::logic_error&) {
+      throw InputError(vary->where, "[[table]]", "vary = " + vary->as_toml(), numeric_parameters_text(chain, table.vary));
+    }
+    for (const SolveSpec& solve : chain.solves)
+      if (solve.unknown == table.vary)
+        throw InputError(vary->where, "[[table]]", "vary = " + vary->as_toml(),
+                         "is a [[solve]] unknown: the solve would overwrite every value of the table");
+    const auto dot = table.vary.rfind('.');
+    const ParamSpec& pspec = *chain.slot(table.vary.substr(0, dot)).params->entry(table.vary.substr(dot + 1)).spec;
+    const Schema schema = table_entry_schema(&pspec);  // outlives params, which point into it
+    const Params params = validate_section(schema, entry, ValidationContext{path, "[[table]]", ""});
+    const Params::Entry& values = params.entry("values");
+    if (values.numbers.size() > max_rows)
+      throw InputError(values.where, "[[table]]", "values",
+                       fmt::format("{} values: at most {} rows (a grid belongs to `radchain sweep`)", values.numbers.size(), max_rows));
+    const ConfigValue& written = *entry.find("values");
+    for (std::size_t i = 0; i < values.numbers.size(); ++i) {
+      const ConfigValue& item = written.type == ConfigValue::Type::array ? written.items[i] : written;
+      const std::string text = item.type == ConfigValue::Type::string ? item.string_value : item.as_toml();
+      if (!pspec.in_range(values.numbers[i]))
+        throw InputError(item.where, "[[table]]", "values = " + item.as_toml(),
+                         fmt::format("out of range for {}: accepted {}", table.vary, pspec.range_text()));
+      table.values_si.push_back(values.numbers[i]);
+      table.values_written.push_back(text);
+    }
+    if (params.has("results")) {
+      const Params::Entry& results = params.entry("results");
+      for (const std::string& name : results.texts) {
+        if (!chain.results().find(name)) {
+          const std::string near = nearest_match(name, names);
+          throw InputError(results.where, "[[table]]", "results = " + results.as_written,
+                           fmt::format("no such result \"{}\"{}; see `radchain run` for the names", name,
+                                       near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+        }
+        table.results.push_back(name);
+      }
+    } else {
+      for (const SolveSpec& solve : chain.solves) table.results.push_back(solve.unknown);
+      if (table.results.empty())
+        throw InputError(entry.where, "[[table]]", "results",
+                         "missing required key: the file solves nothing, so name the results to tabulate");
+    }
+    table.name = params.has("name") ? params.text("name") : join(table.results) + " vs " + table.vary;
+    chain.tables.push_back(std::move(table));
+  }
 }
 
 const Schema& sensor_table_schema() {
@@ -328,6 +400,18 @@ Schema solve_entry_schema(const ParamSpec* unknown) {
           .described("the [criteria.<name>] whose margin is driven to 0, or a list of them (the one that binds is kept)"),
       std::move(bracket).as_pair().finite()
           .described("[low, high] in the unknown's unit (default: the parameter's accepted range)"),
+  };
+}
+
+Schema table_entry_schema(const ParamSpec* varied) {
+  ParamSpec values = varied ? quantity_or_number("values", varied->si_unit, "1") : number("values", "1");
+  if (varied && varied->type == ParamType::quantity) values.example = "\"1 " + varied->si_unit + "\"";
+  return {
+      text("name", "limiting magnitude vs exposure").described("the table's title (default: \"<results> vs <vary>\")"),
+      text("vary", "detector.integration_time").needed().described("the numeric parameter that takes each value: <section>.<key>"),
+      std::move(values).as_list().needed().finite().described("the values, in the varied parameter's unit (at most 1000)"),
+      text("results", "target.magnitude").as_list()
+          .described("the results tabulated at each value (default: the [[solve]] unknowns)"),
   };
 }
 

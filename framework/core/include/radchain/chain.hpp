@@ -82,6 +82,18 @@ struct Expectation {
   SourceLocation where;
 };
 
+// [[table]] vary = "detector.integration_time"  values = ["1 s", "10 s", "30 s"]  results = ["target.magnitude"]:
+// the [[solve]] entries (and the named results) again at each value of one parameter — the per-instrument table
+// downstream tools store (limiting magnitude vs exposure). run() fills it and then puts the chain back.
+struct TableSpec {
+  std::string name;                         // a title ("limiting magnitude vs exposure"); default: "<results> vs <vary>"
+  std::string vary;                         // "<section>.<parameter>", numeric
+  std::vector<double> values_si;
+  std::vector<std::string> values_written;  // as written: "30 s"
+  std::vector<std::string> results;         // result names; default: the solved unknowns
+  SourceLocation where;
+};
+
 struct SolveOutcome {
   SolveSpec spec;
   double value_si = 0;
@@ -110,6 +122,14 @@ struct ExpectationOutcome {
   bool passed = false;
 };
 
+// One [[table]] as computed: a row per value, a column per result (SI; NaN where that row's solve failed).
+struct TableOutcome {
+  TableSpec spec;
+  std::vector<ResultInfo> columns;
+  std::vector<std::vector<double>> rows;
+  std::vector<std::string> notes;  // per row: "" or why a solve failed there
+};
+
 struct Report {
   std::string sensor_file;
   std::string sensor_name;
@@ -117,6 +137,7 @@ struct Report {
   std::vector<double> values;             // SI, NaN when not evaluated
   std::vector<SolveOutcome> solves;
   std::vector<ExpectationOutcome> expectations;
+  std::vector<TableOutcome> tables;       // [[table]] entries (a failed row is reported, not a failed check)
   bool all_passed() const;                // every solve converged and every expectation passed
   std::optional<double> value(const std::string& name) const;
 };
@@ -131,6 +152,7 @@ class Chain {
   std::vector<StageSlot> stages;
   std::vector<SolveSpec> solves;
   std::vector<Expectation> expected;
+  std::vector<TableSpec> tables;
   SolverChoice solver = SolverChoice::automatic;
 
   // What changed since the last evaluation: the spectral phase from the first stage with a changed spectral
@@ -138,8 +160,12 @@ class Chain {
   // iterations) lets stages skip results that only break totals down; a later Detail::full evaluation
   // recomputes them.
   void evaluate(Detail detail = Detail::full);
-  // Every result again (the spectral phase only where something spectral changed) + solves + expectations.
+  // Every result again (the spectral phase only where something spectral changed) + solves + expectations +
+  // tables.
   Report run();
+  // One [[table]]: per value, the parameter set, solve_all(), the columns read; then the parameter and the solved
+  // unknowns are put back as they were and the chain re-evaluated.
+  TableOutcome tabulate(const TableSpec& table);
 
   // Lanes (radchain/lanes.hpp): the scalar phase for lane_count points at once. set_lanes() gives a non-spectral
   // parameter a value per lane (it keeps its scalar value for evaluate()); evaluate_lanes() runs from the first
