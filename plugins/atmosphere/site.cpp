@@ -4,14 +4,24 @@
 //                term relative to the zenith)
 //   seeing       FWHM θ(X) = θ_zenith X^0.6 (Kolmogorov turbulence, r0 ∝ X^{-3/5}: Roddier 1981, Prog. Optics 19,
 //                281; Ivezić et al. 2019 §3.2), published for the detector's PSF
-//   sky          surface brightness in AB mag/arcsec² as measured at the site in the detector's band: it is
-//                already the light that reaches the telescope, so it is published as is and never extinguished
-//                again (the detector counts it by étendue per pixel)
+//   sky          the sky's own radiation, as measured at the site: it is already the light that reaches the
+//                telescope, so it is never extinguished again and never takes the target's spectrum. Given as
+//                  sky_brightness  m AB mag/arcsec², flat in f_ν: L_λ = 10^{-0.4 m} f_ν,AB c/λ² / Ω_arcsec²
+//                                  (Oke & Gunn 1983; Ω_arcsec² = (π/648000)² sr), or
+//                  sky_table       a spectral radiance table (a dark-sky SED), optionally scaled so that its AB
+//                                  magnitude per arcsec² in sky_band is sky_brightness (photon-counting AB
+//                                  magnitude, physics/magnitudes.hpp: m = −2.5 lg(∫ L T λ dλ / ∫ L_AB T λ dλ)).
+//                It is handed on as the background radiance (light.background): the optics image it as an
+//                extended scene (transmittance curve included) and the detector counts it by étendue per pixel.
+//                atmosphere.sky_brightness is the input m, or the table's AB magnitude in sky_band when given.
 // Every condition is explicit: airmass and one of extinction / transmittance_table are required; seeing and sky are optional (absent: none).
 #include "radchain/physics/emva1288.hpp"
+#include "radchain/physics/magnitudes.hpp"
 #include "radchain/plugin.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 
 namespace {
 using namespace radchain;
@@ -28,9 +38,28 @@ const Schema& schema() {
       quantity("seeing", "rad", "0.7 arcsec").above(0)
           .described("seeing FWHM at the zenith (scaled by X^0.6); default: no seeing"),
       number("sky_brightness", "21.2").at_least(10).at_most(30)
-          .described("sky surface brightness at the site in AB mag/arcsec² in the detector's band; default: no sky"),
+          .described("sky surface brightness at the site in AB mag/arcsec² (flat in f_ν; in sky_band when sky_table is given); default: no sky"),
+      spectrum_file("sky_table", "W m-2 sr-1 m-1", "lsst_darksky_throughputs1.9.csv")
+          .described("sky spectral radiance at the site (a dark-sky SED; W m-2 nm-1 arcsec-2 or per sr)"),
+      spectrum_file("sky_band", "1", "lsst_hardware_r_throughputs1.9.csv")
+          .described("bandpass in which sky_table's AB mag/arcsec² is computed, or normalised to sky_brightness"),
   };
   return s;
+}
+
+// Ω of one arcsec², sr.
+constexpr double arcsec2_sr = (std::numbers::pi / 648000.0) * (std::numbers::pi / 648000.0);
+
+// The AB zero point (f_ν = 3630.8 Jy) as a radiance per arcsec², W m-2 sr-1 m-1, over 0.1-30 µm: a flat-f_ν sky
+// of magnitude 0 per arcsec². Log-spaced, 20,001 points: linear interpolation of 1/λ² errs < 1e-7.
+Spectrum ab_radiance_per_arcsec2() {
+  return physics::ab_reference_spectrum(1e-7, 3e-5, 20001).scaled(1.0 / arcsec2_sr, "W m-2 sr-1 m-1");
+}
+
+std::string nm_range(const Spectrum& s) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.1f-%.1f nm", s.min_wavelength_m() * 1e9, s.max_wavelength_m() * 1e9);
+  return text;
 }
 
 class Site final : public Stage {
@@ -41,6 +70,11 @@ class Site final : public Stage {
     if (p.has("extinction") == p.has("transmittance_table"))
       p.reject(p.has("extinction") ? "extinction" : "airmass",
                "give either extinction (mag per airmass) or transmittance_table (τ(λ) at table_airmass)");
+    if (p.has("sky_band") && !p.has("sky_table"))
+      p.reject("sky_band", "is the band of a sky_table (a sky_brightness alone is flat in f_ν, the same in every band)");
+    if (p.has("sky_table") && p.has("sky_brightness") && !p.has("sky_band"))
+      p.reject("sky_brightness", "the sky is given twice (sky_table and sky_brightness): give sky_band to normalise "
+                                 "the table to sky_brightness in that band, or drop one");
   }
 
   void prepare(Context& c) override {
@@ -56,8 +90,7 @@ class Site final : public Stage {
     id_transmittance_ = c.declare("transmittance", "1", params_.has("extinction") ? "10^{-0.4 k X} (Bouguer, in magnitudes)" : "1 (the table's τ(λ)^{X/X_table} is spectral)");
     if (params_.has("seeing"))
       id_seeing_ = c.declare(vocabulary::atmosphere_seeing_fwhm, "θ_zenith X^0.6 (Roddier 1981)", "arcsec");
-    if (params_.has("sky_brightness"))
-      id_sky_ = c.declare(vocabulary::atmosphere_sky_brightness, "input, AB mag/arcsec² at the site (not extinguished again)");
+    prepare_sky(c);
   }
 
   void evaluate(Context& c) override {
@@ -67,20 +100,56 @@ class Site final : public Stage {
     c.results.set(id_airmass_, x);
     c.results.set(id_transmittance_, tau);
     if (id_seeing_) c.results.set(*id_seeing_, physics::seeing_at_airmass(*seeing_, x));
-    if (id_sky_) c.results.set(*id_sky_, *sky_);
+    if (table_ && params_.has("sky_brightness")) {  // the table scaled to sky_brightness in sky_band
+      c.light.background.scale = std::pow(10.0, -0.4 * *sky_) * ab_in_band_ / table_in_band_;
+      c.results.set(*id_sky_, *sky_);
+    } else if (table_) {
+      c.light.background.scale = 1.0;
+      if (id_sky_) c.results.set(*id_sky_, physics::band_magnitude(table_in_band_, ab_in_band_));
+    } else if (params_.has("sky_brightness")) {
+      c.light.background.scale = std::pow(10.0, -0.4 * *sky_);
+      c.results.set(*id_sky_, *sky_);
+    }
   }
 
  private:
+  // The sky as the background radiance for the optics and detector (light.background, scene radiance).
+  void prepare_sky(Context& c) {
+    table_ = params_.has("sky_table");
+    if (!table_ && !params_.has("sky_brightness")) return;
+    if (!table_) {
+      c.light.background = Radiation{RadiationForm::scene_radiance, ab_radiance_per_arcsec2(), 1.0};
+      id_sky_ = c.declare(vocabulary::atmosphere_sky_brightness, "input, AB mag/arcsec² at the site, flat in f_ν (not extinguished again)");
+      return;
+    }
+    const Spectrum& table = params_.spectrum("sky_table");
+    if (table.value().minCoeff() < 0) params_.reject("sky_table", "a sky radiance cannot be negative");
+    c.light.background = Radiation{RadiationForm::scene_radiance, table, 1.0};
+    if (!params_.has("sky_band")) return;
+    const Spectrum& band = params_.spectrum("sky_band");
+    if (band.min_wavelength_m() < table.min_wavelength_m() || band.max_wavelength_m() > table.max_wavelength_m())
+      params_.reject("sky_band", "the band (" + nm_range(band) + ") reaches outside the sky_table (" + nm_range(table) +
+                                     "): the sky would count 0 there");
+    table_in_band_ = physics::band_photon_rate(table, band);
+    ab_in_band_ = physics::band_photon_rate(ab_radiance_per_arcsec2(), band);
+    if (!(table_in_band_ > 0)) params_.reject("sky_table", "the sky has no light in sky_band");
+    id_sky_ = c.declare(vocabulary::atmosphere_sky_brightness,
+                        params_.has("sky_brightness") ? "input: sky_table scaled to it in sky_band (AB mag/arcsec²)"
+                                                      : "AB mag/arcsec² of sky_table in sky_band: −2.5 lg(∫ L T λ dλ / ∫ L_AB T λ dλ)");
+  }
+
   const Params& params_;
   const double *airmass_, *extinction_, *seeing_, *sky_;
   ResultId id_airmass_{}, id_transmittance_{};
   std::optional<ResultId> id_seeing_, id_sky_;
+  bool table_ = false;
+  double table_in_band_ = 0, ab_in_band_ = 0;  // photon radiances in sky_band (per arcsec²-scaled sr)
 };
 
 }  // namespace
 
 RADCHAIN_PLUGIN(Site, {
-    .summary = "ground site: airmass, extinction (mag/airmass), seeing at the zenith × X^0.6, sky in AB mag/arcsec²",
+    .summary = "ground site: airmass, extinction (mag/airmass), seeing at the zenith × X^0.6, sky in AB mag/arcsec² or as a spectral radiance table",
     .reference = "Bouguer's law; Roddier 1981 (seeing ∝ X^0.6); Ivezić et al. 2019 ApJ 873, 111 §3.2",
     .schema = schema,
     .publishes = {vocabulary::atmosphere_airmass, vocabulary::atmosphere_seeing_fwhm, vocabulary::atmosphere_sky_brightness},

@@ -15,9 +15,11 @@
 // The PSF: optics' Airy (psf = "airy") or Gaussian (psf = "gaussian"), or atmospheric seeing (an atmosphere that
 // publishes atmosphere.seeing_fwhm) added in quadrature to the diffraction core as a Gaussian (Ivezić et al. 2019
 // §3.2). Without a PSF all of the image falls in one pixel (Pan 2010's assumption): the brightest pixel gets it all.
-// Sky: an atmosphere publishing atmosphere.sky_brightness (AB mag/arcsec², as measured at the site) is counted
-// by étendue: B = t · A τ Ω_pix · 10^{-0.4 m_sky} ∫ (3631 Jy)/(hλ) η(λ) dλ, the AB zero point through this
-// detector's band and QE (Oke & Gunn 1983; the sky's spectrum taken as flat in f_ν over the band).
+// Sky: the background radiance of the atmosphere (light.background: the site's sky, flat in f_ν or a dark-sky
+// table), imaged by the optics as an extended scene (E'_λ = π L_λ τ(λ) (1 − ε²)/(4N²), transmittance curve
+// included) is counted by étendue per native pixel, like an extended scene below:
+//   B = t p² ∫ E'_λ η(λ) λ/(hc) dλ  = t A τ Ω_pix ∫ L_λ η λ/(hc) dλ   (A_pixel Ω = A_pupil IFOV²)
+// for a flat-f_ν sky of m AB mag/arcsec² this is t A τ Ω_pix[arcsec²] 10^{-0.4 m} ∫ f_ν,AB η/(hλ) dλ (SMTN-002).
 // MOVING TARGETS (issue 13 item 7; physics/streak.hpp): a target crossing the field at `target_rate` ω (relative
 // to the stars) streaks over L = ω t f' per exposure under sidereal tracking (`tracking = "sidereal"`); under
 // rate tracking the target is a point and the stars streak by L. PSF-weighted photometry of the streak is the
@@ -63,7 +65,6 @@
 namespace {
 using namespace radchain;
 
-constexpr double arcsec_per_rad = 180.0 * 3600.0 / std::numbers::pi;
 constexpr double ab_zero_f_nu = 3631e-26;  // W m-2 Hz-1 (Oke & Gunn 1983: m_AB = -2.5 lg f_ν - 48.60, cgs)
 
 const Schema& schema() {
@@ -178,19 +179,20 @@ class Emva1288 final : public Stage {
     obscuration_ = c.find(vocabulary::optics_obscuration);
     focal_length_ = c.find(vocabulary::optics_focal_length);
     aperture_ = c.find(vocabulary::optics_aperture);
-    area_ = c.find(vocabulary::optics_collecting_area);
-    transmittance_ = c.find(vocabulary::optics_transmittance);
     seeing_ = c.find(vocabulary::atmosphere_seeing_fwhm);
     band_magnitude_ = c.find(vocabulary::target_band_magnitude);
     if (band_magnitude_)
       id_zero_point_ = c.declare("instrumental_zero_point", "1",
                                  "m + 2.5 lg(S_img/(M N_tdi t)): the target-system magnitude giving 1 e-/s (SMTN-002)");
-    sky_ = c.find(vocabulary::atmosphere_sky_brightness);
-    if ((seeing_ || sky_) && !focal_length_)
+    const Radiation& background = c.light.background;
+    has_sky_ = background.form != RadiationForm::none;
+    if ((seeing_ || has_sky_) && !focal_length_)
       params_.reject("pixel_pitch", "the atmosphere gives seeing or sky brightness in angle: the optics need a "
                                     "focal_length to map it onto pixels");
-    if (sky_ && (!area_ || !transmittance_))
-      params_.reject("pixel_pitch", "a sky brightness needs a telescope (collecting area and transmittance)");
+    if (has_sky_ && background.form != RadiationForm::focal_irradiance)
+      c.refuse_form("the sky as a focal-plane irradiance (a telescope with a focal_length)", background.form);
+    // Electrons s-1 per m² of focal plane per unit background scale (before qe), as for an extended scene.
+    if (has_sky_) sky_rate_per_scale_ = physics::photon_rate(background.spectrum, lo, hi, qe_curve);
     if (psf_photometry_ && !seeing_ && !gaussian_fwhm_ && !(psf_wavelength_ && f_number_))
       params_.reject("photometry", "photometry = \"psf\" needs a PSF: seeing from the atmosphere or psf = \"airy\"/"
                                    "\"gaussian\" in the optics");
@@ -216,7 +218,7 @@ class Emva1288 final : public Stage {
     id_gain_ = c.declare(vocabulary::detector_system_gain, "input K", "DN/e-");
     id_tdi_ = c.declare(vocabulary::detector_tdi_stages, "input N_tdi");
     id_sky_ = c.declare(vocabulary::detector_sky_electrons_per_pixel,
-                        "B = N_tdi b² t A τ Ω_pix 10^{-0.4 m_sky} ∫ f_ν,AB η/(hλ) dλ per binned pixel and frame", "e-");
+                        "B = N_tdi b² t p² ∫ E'_λ,sky η λ/(hc) dλ (étendue) per binned pixel and frame", "e-");
     id_peak_fraction_ = c.declare("peak_pixel_fraction", "1", "fraction of the point image in the brightest native pixel");
     id_psf_fwhm_ = c.declare(vocabulary::detector_psf_fwhm, "Gaussian PSF FWHM on the focal plane (seeing ⊕ diffraction)", "um");
     id_quant_ = c.declare("quantisation_noise", "electron", "σ_q/K = 1/(√12 K) per pixel (EMVA eq. 5)", "e-");
@@ -293,11 +295,7 @@ class Emva1288 final : public Stage {
     const double image1 = a.signal_scale() * qe * photon_rate_per_scale_ * t * tdi;  // one frame, all pixels
     const double signal1 = ensquared * image1;
     double sky_native = 0.0;  // one native pixel, one TDI stage
-    if (sky_) {
-      const double omega_arcsec2 = std::pow(pitch / a.value(*focal_length_) * arcsec_per_rad, 2);
-      sky_native = t * qe * ab_zero_f_nu_rate() * a.value(*area_) * a.value(*transmittance_) * omega_arcsec2 *
-                   std::pow(10.0, -0.4 * a.value(*sky_));
-    }
+    if (has_sky_) sky_native = t * qe * pitch * pitch * sky_rate_per_scale_ * a.background_scale();
     const double sky_binned = b * b * tdi * sky_native;
     const double dark_binned = b * b * tdi * *dark_current_ * t;
     const double quant_var = physics::emva_quantisation_variance_e2(gain);
@@ -352,8 +350,6 @@ class Emva1288 final : public Stage {
   }
 
  private:
-  double ab_zero_f_nu_rate() const { return ab_electrons_per_m2_s_; }
-
   // ---- extended scenes (issue 14, item 3) ----
   void prepare_extended(Context& c, double lo, double hi, const Spectrum* qe_curve) {
     for (const char* key : {"window_pixels", "ensquared_energy", "photometry"})
@@ -497,8 +493,10 @@ class Emva1288 final : public Stage {
   ResultId id_pitch_{}, id_scene_radiance_{}, id_reference_radiance_{}, id_reference_signal_{}, id_reference_snr_{},
       id_nedl_{}, id_saturation_radiance_{}, id_solid_angle_{}, id_etendue_{}, id_responsivity_{}, id_qe_integral_{},
       id_reference_noise_{}, id_dynamic_range_{};
-  std::optional<ResultId> psf_wavelength_, gaussian_fwhm_, f_number_, obscuration_, focal_length_, aperture_, area_,
-      transmittance_, seeing_, sky_, band_magnitude_, id_zero_point_;
+  std::optional<ResultId> psf_wavelength_, gaussian_fwhm_, f_number_, obscuration_, focal_length_, aperture_,
+      transmittance_, seeing_, band_magnitude_, id_zero_point_;
+  bool has_sky_ = false;
+  double sky_rate_per_scale_ = 0;  // electrons s-1 m-2 of focal plane per unit background scale, before qe
   ResultId id_image_{}, id_signal_{}, id_noise_{}, id_snr_{}, id_time_{}, id_pixels_{}, id_ensquared_{}, id_neff_{},
       id_fill_{}, id_peak_{}, id_saturation_{}, id_gain_{}, id_tdi_{}, id_sky_{}, id_peak_fraction_{}, id_psf_fwhm_{},
       id_quant_{}, id_dark_{}, id_read_noise_{}, id_background_{}, id_shot_noise_{}, id_prnu_noise_{}, id_ab_zero_{};

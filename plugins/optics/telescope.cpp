@@ -68,9 +68,10 @@ class Telescope final : public LaneStage<Telescope> {
       c.refuse_form("a point irradiance or a scene radiance at the pupil", signal.form);
     }
     form_ = signal.form;
-    // A scene background (ground, sky) goes through the same optics.
+    // A scene background (ground, sky) goes through the same optics — transmittance curve included — as an
+    // extended scene, behind an extended or a point target alike (the sky of a star field, issue 13 item 3).
     Radiation& background = c.light.background;
-    if (background.form == RadiationForm::scene_radiance && form_ == RadiationForm::focal_irradiance) {
+    if (background.form == RadiationForm::scene_radiance && params_.has("focal_length")) {
       if (params_.has("transmittance_curve"))
         background.spectrum = background.spectrum.product(params_.spectrum("transmittance_curve"), background.spectrum.unit());
       background.form = RadiationForm::focal_irradiance;
@@ -109,10 +110,11 @@ class Telescope final : public LaneStage<Telescope> {
     a.set(id_obscuration_, eps);
     if (form_ == RadiationForm::focal_power) {
       a.signal_scale() *= area * tau;
-    } else if (form_ == RadiationForm::focal_irradiance) {
+    }
+    if (has_focal_length_) {  // Kolobrodov 1996 eq. 5: E' = π L τ (1 − ε²) / (4 N²)
       const V n = a.param(focal_length_) / d;
       const V radiance_to_irradiance = std::numbers::pi * unobscured * tau / (4.0 * n * n);
-      a.signal_scale() *= radiance_to_irradiance;
+      if (form_ == RadiationForm::focal_irradiance) a.signal_scale() *= radiance_to_irradiance;
       if (a.light().background.form == RadiationForm::focal_irradiance) a.background_scale() *= radiance_to_irradiance;
     }
     if (has_focal_length_) {

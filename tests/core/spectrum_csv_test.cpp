@@ -54,6 +54,7 @@ const Shipped shipped[] = {
     {"lsst_hardware_u_throughputs1.9.csv", "1"},
     {"lsst_hardware_z_throughputs1.9.csv", "1"},
     {"lsst_hardware_y_throughputs1.9.csv", "1"},
+    {"lsst_darksky_throughputs1.9.csv", "W m-2 sr-1 m-1"},
 };
 
 TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
