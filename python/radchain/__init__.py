@@ -29,6 +29,7 @@ from ._radchain import InputError, framework_version, plugin_abi_version
 __all__ = [
     "InputError", "Session", "Result", "load", "loads", "describe", "plugins", "compare", "catalogue", "budget", "uncertainty",
     "configure", "search_path", "set_threads", "threads", "framework_version", "plugin_abi_version",
+    "Stage", "parameter", "register_stage",
 ]
 __version__ = framework_version
 
@@ -392,3 +393,62 @@ def _catalogue_frame(table: str, errors, code: int):
     df.attrs["errors"] = list(df.loc[df["check"] == "ERROR", "note"]) if errors is None else list(errors)
     df.attrs["summary"] = data.get("summary", "")
     return df
+
+
+#: One parameter of a stage written in Python (radchain.parameter).
+Parameter = _namedtuple("Parameter", "key type unit example default required min max min_exclusive max_exclusive doc")
+
+
+def parameter(key: str, type: str = "number", unit: str = "", default: str | None = None, example: str | None = None,
+              required: bool = False, min: float = -_np.inf, max: float = _np.inf, min_exclusive: bool = False,
+              max_exclusive: bool = False, doc: str = "") -> Parameter:
+    """A key of a Python stage's schema, as the C++ schemas declare theirs (radchain/schema.hpp): type "quantity"
+    (unit: its SI unit, "m"; values written "15 cm"), "number" or "integer"; default and example as written in a
+    sensor file, without quotes ("15 cm", "5"); min/max in SI."""
+    example = example if example is not None else default if default is not None else "1" + (f" {unit}" if unit else "")
+    return Parameter(key, type, unit, f'"{example}"' if type == "quantity" else example, default, required,
+                     float(min), float(max), min_exclusive, max_exclusive, doc)
+
+
+class Stage:
+    """A stage written in Python: subclass, fill in the contract and register it (radchain.register_stage), then a
+    sensor file's `plugin = "<name>"` in the [<kind>] section builds it like a C++ plugin's stage.
+
+        class MyCriterion(radchain.Stage):
+            kind, name = "criterion", "py_snr_threshold"
+            schema = [radchain.parameter("threshold", default="5", min=0, min_exclusive=True, doc="SNR threshold T")]
+            publishes = {"criteria.*.margin": "SNR/T - 1"}      # vocabulary terms and their equations
+            needs = ["detector.snr"]                             # vocabulary terms read (optional_needs: if present)
+            def evaluate(self, params, inputs):                  # SI in, SI out
+                return {"criteria.*.margin": inputs["detector.snr"] / params["threshold"] - 1}
+
+    evaluate() runs at every evaluation of the chain's scalar phase (solves, sweeps: one point at a time, the GIL
+    held), with params {key: SI value} (the keys given or defaulted) and inputs {term: SI value}; it returns a value
+    for every published term. The spectral phase (Light) is not reachable from Python.
+    """
+    kind: str = ""
+    name: str = ""
+    summary: str = ""
+    reference: str = ""
+    schema: list = []
+    publishes: dict = {}
+    needs: list = []
+    optional_needs: list = []
+
+    def evaluate(self, params: dict, inputs: dict) -> dict:
+        raise NotImplementedError(f"{type(self).__name__}.evaluate(params, inputs)")
+
+
+def register_stage(cls):
+    """Adds a Stage subclass to the plugins sensor files can name (replacing an earlier registration of its name for
+    chains built afterwards). Usable as a class decorator; returns the class."""
+    if not (isinstance(cls, type) and issubclass(cls, Stage)):
+        raise TypeError("register_stage takes a radchain.Stage subclass")
+    if not cls.kind or not cls.name:
+        raise ValueError(f"{cls.__name__}: set kind (e.g. \"detector\") and name (the sensor file's plugin = \"...\")")
+    publishes = cls.publishes if isinstance(cls.publishes, _Mapping) else {t: "" for t in cls.publishes}
+    _radchain.register_stage(cls.kind, cls.name, cls.summary or cls.__doc__ or "", cls.reference,
+                             [tuple(p) for p in cls.schema],
+                             [(str(t), str(e) or f"{cls.__qualname__}.evaluate (Python)") for t, e in publishes.items()],
+                             [(str(t), False) for t in cls.needs] + [(str(t), True) for t in cls.optional_needs], cls)
+    return cls

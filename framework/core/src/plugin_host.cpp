@@ -118,6 +118,8 @@ struct PluginHost::Impl {
   std::map<std::string, const PluginInfo*, std::less<>> by_name;  // first loaded under a name
   std::set<std::string> shadow_warnings;
   std::optional<std::vector<PluginFile>> discovered;  // the scan of the current search path
+  std::deque<PluginInfo> added;                       // add(): never freed
+  std::map<std::string, const PluginInfo*, std::less<>> added_by_name;
 };
 
 PluginHost& PluginHost::instance() {
@@ -253,8 +255,18 @@ const PluginInfo& PluginHost::load_file_locked(const std::string& path) {
   return info;
 }
 
+const PluginInfo& PluginHost::add(PluginInfo info) {
+  std::lock_guard lock(impl_->mutex);
+  const PluginInfo& added = impl_->added.emplace_back(std::move(info));
+  impl_->added_by_name[added.name] = &added;
+  impl_->by_name[added.name] = &added;
+  return added;
+}
+
 const PluginInfo& PluginHost::load(Kind kind, const std::string& name) {
   std::lock_guard lock(impl_->mutex);
+  if (auto it = impl_->added_by_name.find(name); it != impl_->added_by_name.end() && it->second->kind == kind)
+    return *it->second;
   std::vector<std::string> available;
   std::optional<Kind> other_kind;  // the name exists, but for another section
   for (const auto& file : discovered()) {

@@ -36,6 +36,10 @@ class PluginHost {
   const PluginInfo& load_file(const std::string& path);
   // The plugin loaded under this name, if any (Context checks a stage's look-ups against its contract).
   const PluginInfo* loaded(std::string_view name) const;
+  // Adds a plugin defined in the process, not in a library (a stage written in Python: radchain.register_stage,
+  // docs/python.md). load() finds it before any library of that kind and name; adding the name again replaces it
+  // for later look-ups (chains already built keep the one they have: nothing added is ever freed).
+  const PluginInfo& add(PluginInfo info);
 
  private:
   PluginHost();
