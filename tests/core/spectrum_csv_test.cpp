@@ -43,6 +43,8 @@ const Shipped shipped[] = {
     {"johnson_cousins_R_bessell1990.csv", "1"},
     {"johnson_cousins_I_bessell1990.csv", "1"},
     {"gaia_dr3_G.csv", "1"},
+    {"gaia_dr3_BP.csv", "1"},
+    {"gaia_dr3_RP.csv", "1"},
     {"sdss_g_doi2010.csv", "1"},
     {"sdss_r_doi2010.csv", "1"},
     {"sdss_i_doi2010.csv", "1"},
