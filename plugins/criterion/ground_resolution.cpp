@@ -3,7 +3,9 @@
 //   δV = V_s h / f'  (eq. 16),   margin = δV_required / δV − 1   (≥ 0: fine enough)
 // A [[solve]] on optics.focal_length with this criterion is eq. (16) solved for f'. Also reported: the field of
 // view (17), swath and along-field element (18), growth at the field edge and for the tilted line of sight (19),
-// and the along-track sample δy = v t_p of one line period (23) against δV.
+// and the along-track sample δy = v t_p of one line period (23) against δV. Beside Kolobrodov's element, the
+// pixel-pitch GSD h p / f' (the distance between samples, Schowengerdt 2007 §3.3) when the detector gives its pitch.
+#include "radchain/physics/earth_geometry.hpp"
 #include "radchain/physics/pushbroom.hpp"
 #include "radchain/plugin.hpp"
 
@@ -31,9 +33,12 @@ class GroundResolution final : public Stage {
     element_ = c.require(vocabulary::detector_system_element);
     line_ = c.require(vocabulary::detector_line_length);
     period_ = c.require(vocabulary::detector_integration_time);
+    pitch_ = c.find(vocabulary::detector_pixel_pitch);
     id_ground_ = c.declare(vocabulary::criterion_ground_element, "Kolobrodov 1996 eq. (16): δV = V_s h / f'", "m");
     id_required_ = c.declare("required_ground_element", "m", "input δV", "m");
     id_margin_ = c.declare(vocabulary::criterion_margin, "δV_required / δV − 1");
+    if (pitch_)
+      id_gsd_ = c.declare(vocabulary::criterion_gsd_nadir, "pixel-pitch GSD h p / f' (Schowengerdt 2007 §3.3; not eq. 16's V_s)", "m");
     id_field_ = c.declare("angular_field", "rad", "eq. (17): 2ω = 2 atan(l_D / 2f')", "deg");
     id_field_across_ = c.declare("angular_field_across", "rad", "eq. (17): 2ω_y = 2 atan(V_s / 2f')", "deg");
     id_swath_ = c.declare("swath", "m", "eq. (18): V = l_D h / f'", "km");
@@ -56,6 +61,7 @@ class GroundResolution final : public Stage {
     c.results.set(id_ground_, ground);
     c.results.set(id_required_, *required_);
     c.results.set(id_margin_, *required_ / ground - 1.0);
+    if (id_gsd_) c.results.set(*id_gsd_, physics::pixel_pitch_gsd_m(h, c.results.value(*pitch_), f));
     c.results.set(id_field_, field);
     c.results.set(id_field_across_, physics::full_angular_field_rad(vs, f));
     c.results.set(id_swath_, physics::ground_extent_m(c.results.value(line_), h, f));
@@ -72,6 +78,7 @@ class GroundResolution final : public Stage {
  private:
   const double* required_;
   ResultId altitude_{}, speed_{}, tilt_{}, focal_{}, element_{}, line_{}, period_{};
+  std::optional<ResultId> pitch_, id_gsd_;
   ResultId id_ground_{}, id_required_{}, id_margin_{}, id_field_{}, id_field_across_{}, id_swath_{}, id_width_{},
       id_edge_in_{}, id_edge_cross_{}, id_tilt_in_{}, id_tilt_cross_{}, id_along_{}, id_match_{}, id_period_match_{};
 };
@@ -82,9 +89,9 @@ RADCHAIN_PLUGIN(GroundResolution, {
     .summary = "ground resolution element from altitude, focal length and the system element; field, swath",
     .reference = "Kolobrodov 1996 eqs. (16)-(19), (23)",
     .schema = schema,
-    .publishes = {vocabulary::criterion_ground_element, vocabulary::criterion_margin},
+    .publishes = {vocabulary::criterion_ground_element, vocabulary::criterion_margin, vocabulary::criterion_gsd_nadir},
     .needs = {vocabulary::platform_altitude, vocabulary::platform_ground_speed, vocabulary::platform_tilt,
               vocabulary::optics_focal_length, vocabulary::detector_system_element, vocabulary::detector_line_length,
-              vocabulary::detector_integration_time},
+              vocabulary::detector_integration_time, if_present(vocabulary::detector_pixel_pitch)},
     .inverse = InverseForm::power_law,
 })

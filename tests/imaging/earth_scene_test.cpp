@@ -30,8 +30,15 @@ TEST(RenderEarth, RadiometryComesFromTheChain) {
   EXPECT_NEAR(s.background_reflectance, 0.3, 1e-15);
   EXPECT_NEAR(s.exposure_per_reflectance() * 0.3 / s.saturation_J_m2, *k.report.value("detector.background_saturation_fraction"), 1e-12);
   // Geometry and MTF inputs of the design.
-  EXPECT_NEAR(s.output_sampling_m, *k.report.value("criteria.resolution.ground_element"), 1e-12);
-  EXPECT_NEAR(s.output_sampling_m, 5.0, 1e-9);
+  // One output pixel per detector sample: the pixel-pitch GSD p h / f' (3.35 m), not Kolobrodov's element
+  // V_s h / f' (5 m), which stays in the header as GRNDELEM.
+  EXPECT_NEAR(s.output_sampling_m, *k.report.value("criteria.resolution.gsd_nadir"), 1e-12);
+  EXPECT_NEAR(s.output_sampling_m, 7e-6 * 400e3 / *k.report.value("optics.focal_length"), 1e-12);
+  EXPECT_NEAR(s.ground_element_m, 5.0, 1e-9);
+  const Header h = earth_scene_header(s, 1);
+  EXPECT_NEAR(*card_number(h, "GSD"), s.output_sampling_m, 1e-9);
+  EXPECT_NEAR(*card_number(h, "PIXGSD"), s.output_sampling_m, 1e-9);
+  EXPECT_NEAR(*card_number(h, "GRNDELEM"), 5.0, 1e-9);
   EXPECT_NEAR(s.wavelength_m, 0.76e-6, 1e-18);
   EXPECT_NEAR(s.f_number, *k.report.value("optics.f_number"), 1e-12);
   EXPECT_NEAR(s.element_m, 7e-6, 1e-18);
@@ -61,6 +68,7 @@ TEST(RenderEarth, SystemMtfIsOpticsTimesElement) {
 TEST(RenderEarth, FlatStaysFlatAndSizesFollowTheSampling) {
   auto k = load(kolobrodov);
   EarthSceneOptions o = options(1.25);
+  o.output_sampling_m = 5.0;  // Kolobrodov's element: 4 input pixels per output pixel
   o.noise = o.saturation = o.quantisation = false;
   const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, o);
   const Image out = filtered_reflectance(s, make_flat_scene(81, 41, 0.3));
@@ -85,7 +93,9 @@ TEST(RenderEarth, FlatStaysFlatAndSizesFollowTheSampling) {
 
 TEST(RenderEarth, NoiseQuantisationAndSeeds) {
   auto k = load(kolobrodov);
-  const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, options(5.0));
+  EarthSceneOptions o = options(5.0);
+  o.output_sampling_m = 5.0;  // one input pixel per output pixel
+  const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, o);
   const Image map = make_test_scene({256, 5.0, 5.0, 0.3, 0.6, 0.003, 5.0});
   const Image a = render_earth_scene(s, map, 11), b = render_earth_scene(s, map, 11), c = render_earth_scene(s, map, 12);
   EXPECT_EQ(a.pixels, b.pixels);

@@ -94,6 +94,7 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   s.nee_J_m2 = need(vocabulary::detector_nee_working);
   s.snr = need(vocabulary::detector_snr);
   if (auto g = detail::criterion_result(report, vocabulary::criterion_ground_element)) s.ground_element_m = g->second;
+  if (auto g = detail::criterion_result(report, vocabulary::criterion_gsd_nadir)) s.pixel_gsd_m = g->second;
 
   const auto quality = detail::criterion_result(report, vocabulary::criterion_required_quality);
   if (quality) s.eta = quality->second;
@@ -118,9 +119,11 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
 
   if (!(o.input_sampling_m > 0)) refuse(file, "input sampling", "give the ground size of one input pixel (> 0 m)");
   s.input_sampling_m = o.input_sampling_m;
-  s.output_sampling_m = o.output_sampling_m ? *o.output_sampling_m : s.ground_element_m;
+  // One output pixel per detector sample: the pixel-pitch GSD h p / f', else Kolobrodov's element V_s h / f'.
+  s.output_sampling_m = o.output_sampling_m ? *o.output_sampling_m : s.pixel_gsd_m > 0 ? s.pixel_gsd_m : s.ground_element_m;
   if (!(s.output_sampling_m > 0))
-    refuse(file, "output sampling", "the sensor publishes no criteria.<name>.ground_element: give the output sampling");
+    refuse(file, "output sampling",
+           "the sensor publishes neither criteria.<name>.gsd_nadir nor criteria.<name>.ground_element: give the output sampling");
   if (o.adc_bits < 1 || o.adc_bits > 31) refuse(file, "ADC bits", "must lie in 1..31");
   s.adc_bits = o.adc_bits;
   s.offset_dn = o.offset_dn;
@@ -268,6 +271,7 @@ Header earth_scene_header(const EarthSceneSetup& s, std::uint64_t seed) {
   number("PIXSIZE", s.pitch_m * 1e6, "[um] detector pitch");
   number("INSAMP", s.input_sampling_m, "[m] input map sampling");
   number("GSD", s.output_sampling_m, "[m] output sampling");
+  if (s.pixel_gsd_m > 0) number("PIXGSD", s.pixel_gsd_m, "[m] pixel-pitch GSD h p / f'");
   if (s.ground_element_m > 0) number("GRNDELEM", s.ground_element_m, "[m] designed ground element");
   number("KIRRAD", s.irradiance_per_reflectance_W_m2, "[W m-2] image irradiance per reflectance");
   number("NEE", s.nee_J_m2, "[J m-2] noise-equivalent exposure");

@@ -10,8 +10,9 @@
 //        detector: sinc(V_D ν_x) · sinc(V_D ν_y), the square element of eq. (8) (signed: contrast reversal
 //                  beyond 1/V_D is kept);
 //      ground frequency ν_g ↔ focal-plane frequency ν = ν_g h / f' (platform.altitude, optics.focal_length);
-//   3. point samples of the filtered field every output_sampling_m (default the designed ground element
-//      criteria.resolution.ground_element = V_s h / f'; the element's own footprint is pitch·h/f'): an integer
+//   3. point samples of the filtered field every output_sampling_m (default one detector sample, the
+//      pixel-pitch GSD criteria.<name>.gsd_nadir = p h / f', else the designed ground element
+//      criteria.<name>.ground_element = V_s h / f' of Kolobrodov's eq. 16): an integer
 //      ratio of the two samplings takes every r-th input pixel, exactly; otherwise Keys' cubic interpolation;
 //   4. exposure H = ρ · K · t_i with K = detector.signal_irradiance / target.reflectance_difference, the
 //      image-plane irradiance per unit reflectance (the chain is linear in ρ; no atmosphere plugin publishes a
@@ -40,7 +41,7 @@ std::optional<OpticsMtf> optics_mtf_from_string(const std::string& name);  // "d
 
 struct EarthSceneOptions {
   double input_sampling_m = 0;              // required: ground size of one input pixel
-  std::optional<double> output_sampling_m;  // default criteria.resolution.ground_element
+  std::optional<double> output_sampling_m;  // default criteria.<name>.gsd_nadir, else .ground_element
   OpticsMtf optics = OpticsMtf::diffraction;
   std::optional<double> wavelength_m;  // default the mtf_match criterion's wavelength, else the band centre
   bool detector_mtf = true;
@@ -67,6 +68,7 @@ struct EarthSceneSetup {
   // the chain's answer
   double reflectance_difference = 0, background_reflectance = 0, snr = 0;
   double ground_element_m = 0;  // criteria.resolution.ground_element
+  double pixel_gsd_m = 0;       // criteria.<name>.gsd_nadir (0: not published)
 
   double exposure_per_reflectance() const { return irradiance_per_reflectance_W_m2 * integration_time_s; }
   double exposure_per_dn() const;  // q = H_m / 2^bits
