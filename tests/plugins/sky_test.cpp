@@ -3,6 +3,7 @@
 // detector by étendue. Every number against a hand integral on the tables' own grids, or a published value.
 #include "radchain/chain.hpp"
 #include "radchain/constants.hpp"
+#include "radchain/physics/zodiacal.hpp"
 #include "radchain/spectrum_csv.hpp"
 
 #include <gtest/gtest.h>
@@ -125,6 +126,107 @@ TEST(SkyTable, SkyPassesTheOpticsTransmittanceCurve) {
   EXPECT_NEAR(ratio("detector.sky_electrons_per_pixel"), fraction, 2e-3 * fraction);
   EXPECT_NEAR(ratio("detector.image_electrons"), fraction, 2e-3 * fraction);
   EXPECT_NEAR(ratio("detector.sky_electrons_per_pixel") / ratio("detector.image_electrons"), 1.0, 1e-5);
+}
+
+// ---- Space: zodiacal light (Leinert et al. 1998 Table 17) and stray light, plugins/atmosphere/space.cpp ----
+
+// Table lookup: nodes exactly (10⁻⁸ W m⁻² sr⁻¹ µm⁻¹ = 1e-2 W m⁻² sr⁻¹ m⁻¹), a cell's centre is the mean of its four
+// corners, the table is symmetric about the Sun-antisun line, and there is no value within ~15-30° of the Sun.
+TEST(Zodiacal, LeinertTable17Lookup) {
+  using physics::leinert_zodiacal_radiance_500nm;
+  EXPECT_DOUBLE_EQ(leinert_zodiacal_radiance_500nm(90, 30).value(), 132e-2);   // Table 17: λ−λ⊙ = 90°, β = 30°
+  EXPECT_DOUBLE_EQ(leinert_zodiacal_radiance_500nm(180, 0).value(), 230e-2);   // gegenschein
+  EXPECT_DOUBLE_EQ(leinert_zodiacal_radiance_500nm(30, 0).value(), 2480e-2);
+  for (double lon : {0.0, 45.0, 137.0}) EXPECT_DOUBLE_EQ(leinert_zodiacal_radiance_500nm(lon, 90).value(), 77e-2);
+  EXPECT_NEAR(leinert_zodiacal_radiance_500nm(97.5, 27.5).value(), (147 + 132 + 133 + 119) / 4.0 * 1e-2, 1e-12);
+  EXPECT_DOUBLE_EQ(leinert_zodiacal_radiance_500nm(270, -30).value(), leinert_zodiacal_radiance_500nm(90, 30).value());
+  EXPECT_FALSE(leinert_zodiacal_radiance_500nm(10, 0).has_value());
+  EXPECT_FALSE(leinert_zodiacal_radiance_500nm(12, 7).has_value());  // a corner (10°, 5°) has no value
+}
+
+// S10 → mag/arcsec² by hand: one V = 10 star per deg² spread over 3600² arcsec² is 10 + 5 lg 3600 = 27.78.
+// The ecliptic pole, 77e-8 W m⁻² sr⁻¹ µm⁻¹ = 60.2 S10, is the published ≈ 23.3 V mag/arcsec² (Leinert et al.
+// 1998). The S10 unit in W: the E-490 Sun at 500 nm dimmed to V = 10 (V⊙ = −26.73, Pan 2010 eq. 1) per deg².
+TEST(Zodiacal, S10UnitsAndTheEclipticPole) {
+  EXPECT_NEAR(physics::s10_to_mag_per_arcsec2(1.0), 10 + 5 * std::log10(3600.0), 1e-12);
+  EXPECT_NEAR(physics::s10_to_mag_per_arcsec2(100.0), 27.782 - 5.0, 1e-3);
+  const double pole_s10 = physics::leinert_zodiacal_radiance_500nm(0, 90).value() / physics::s10_W_m2_sr_m;
+  EXPECT_NEAR(pole_s10, 60.2, 0.05);
+  EXPECT_NEAR(physics::s10_to_mag_per_arcsec2(pole_s10), 23.3, 0.05);
+  const Spectrum sun = load_spectrum_csv(spectra + "am0_astm_e490_00a.csv", "W m-2 m-1").spectrum;
+  const double deg2_sr = std::pow(std::numbers::pi / 180, 2);
+  const double s10 = sun(500e-9) * std::pow(10.0, -0.4 * (10 + 26.73)) / deg2_sr;
+  EXPECT_NEAR(s10 / physics::s10_W_m2_sr_m, 1.0, 0.02);
+}
+
+std::string space_sensor(const std::string& atmosphere) {
+  return R"([sensor]
+name = "space"
+[source]
+plugin = "sun"
+[atmosphere]
+plugin = "space"
+)" + atmosphere + R"(
+[target]
+plugin = "point_source"
+system = "vega"
+band = "johnson_cousins_V_bessell1990.csv"
+magnitude = 15
+[optics]
+plugin = "telescope"
+aperture = "15 cm"
+focal_length = "0.5 m"
+[detector]
+plugin = "emva1288"
+band_min = "0.4 um"
+band_max = "0.9 um"
+qe = 0.6
+gain = "0.5 DN/e-"
+dark_noise = "3 e-"
+saturation_capacity = "20000 e-"
+adc_bits = 16
+pixel_pitch = "5 um"
+integration_time = "10 s"
+)";
+}
+
+Report run_text(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("radchain_sky_" + std::to_string(::getpid()) + "_" + name + ".toml");
+  std::ofstream(path) << text;
+  Chain chain = load_sensor(path.string());
+  Report r = chain.run();
+  std::filesystem::remove(path);
+  return r;
+}
+
+// The background electrons by étendue, by hand: L_λ = L_500 E⊙(λ)/E⊙(500 nm), one pixel of p² behind f/3.33
+// sees Ω = π/(4N²): B = t qe p² Ω ∫ L_λ λ/(hc) dλ over 400-900 nm (trapezoid on the E-490 nodes).
+TEST(Zodiacal, BackgroundElectronsByHandAndStrayLightAdds) {
+  const Report zodi = run_text("zodi", space_sensor("zodiacal_longitude = \"90 deg\"\nzodiacal_latitude = \"30 deg\""));
+  auto v = [](const Report& r, const std::string& n) { return r.value(n).value(); };
+  EXPECT_DOUBLE_EQ(v(zodi, "atmosphere.zodiacal_radiance_500nm"), 1.32);
+  EXPECT_NEAR(v(zodi, "atmosphere.zodiacal_surface_brightness"), physics::s10_to_mag_per_arcsec2(132 / 1.28), 1e-12);
+  const Spectrum sun = load_spectrum_csv(spectra + "am0_astm_e490_00a.csv", "W m-2 m-1").spectrum;
+  std::vector<double> l = {400e-9};
+  for (Eigen::Index i = 0; i < sun.size(); ++i)
+    if (sun.wavelength_m()(i) > 400e-9 && sun.wavelength_m()(i) < 900e-9 * (1 - 1e-12)) l.push_back(sun.wavelength_m()(i));
+  l.push_back(900e-9);  // the band's limits as nodes (the table's "900" nm reads as 900e-9 within rounding)
+  double photons = 0;
+  auto f = [&](double x) { return 1.32 * sun(x) / sun(500e-9) * x / (constants::planck_J_s * constants::speed_of_light_m_s); };
+  for (std::size_t i = 1; i < l.size(); ++i) photons += 0.5 * (f(l[i]) + f(l[i - 1])) * (l[i] - l[i - 1]);
+  const double n = 0.5 / 0.15, omega = std::numbers::pi / (4 * n * n);
+  const double expected = 10 * 0.6 * 25e-12 * omega * photons;
+  EXPECT_NEAR(v(zodi, "detector.sky_electrons_per_pixel") / expected, 1.0, 1e-6);
+  // Stray light of 1e-6 W m⁻² sr⁻¹ µm⁻¹ (= 1 W m⁻² sr⁻¹ m⁻¹) at 500 nm, same spectrum: the count scales by 2.32/1.32.
+  const Report both = run_text("stray", space_sensor("zodiacal_longitude = \"90 deg\"\nzodiacal_latitude = \"30 deg\"\n"
+                                                     "stray_light = \"1e-6 W m-2 sr-1 um-1\""));
+  EXPECT_NEAR(v(both, "atmosphere.background_radiance_500nm"), 2.32, 1e-12);
+  EXPECT_NEAR(v(both, "detector.sky_electrons_per_pixel") / v(zodi, "detector.sky_electrons_per_pixel"), 2.32 / 1.32, 1e-12);
+  // No atmosphere on the line of sight: the star's signal equals that of atmosphere "none".
+  std::string none = space_sensor("");
+  none.replace(none.find("plugin = \"space\""), 16, "plugin = \"none\"");
+  const Report vacuum = run_text("none", none);
+  EXPECT_DOUBLE_EQ(v(zodi, "detector.image_electrons"), v(vacuum, "detector.image_electrons"));
 }
 
 }  // namespace

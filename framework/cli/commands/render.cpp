@@ -117,7 +117,10 @@ int render_space(Chain& chain, const Report& report, const RenderCommand& c, con
              std::count_if(s.sources.begin(), s.sources.end(), [](const auto& x) { return x.target; }),
              std::count_if(s.sources.begin(), s.sources.end(), [](const auto& x) { return !x.target; }));
   for (std::size_t k = 0; k < s.sources.size() && k < 9; ++k)
-    if (s.sources[k].target)
+    if (s.sources[k].target && s.target_streak_px > 0)
+      fmt::print("  target at ({:.2f}, {:.2f}) magnitude {:.3f}: {:.4g} e- in a streak of {:.4g} pixels along +x\n",
+                 s.sources[k].x_px, s.sources[k].y_px, s.sources[k].magnitude, s.sources[k].electrons, s.target_streak_px);
+    else if (s.sources[k].target)
       fmt::print("  target at ({:.2f}, {:.2f}) magnitude {:.3f}: {:.4g} e- in the image, {:.4g} in the {}-pixel window\n",
                  s.sources[k].x_px, s.sources[k].y_px, s.sources[k].magnitude, s.sources[k].electrons,
                  s.sources[k].electrons * renderer.window_fraction(k, static_cast<int>(std::lround(std::sqrt(s.window_pixels)))),

@@ -3,6 +3,7 @@
 #include "../overrides.hpp"
 
 #include "radchain/imaging/render.hpp"
+#include "radchain/vocabulary.hpp"
 
 #include <fmt/format.h>
 
@@ -24,7 +25,26 @@ int validate_command(const ValidateCommand& c) {
     ok = ok && passed;
     return passed ? "ok  " : "FAIL";
   };
-  if (is_point_target_sensor(chain)) {
+  if (is_point_target_sensor(chain) && report.value(std::string(vocabulary::detector_target_streak_pixels.name)).value_or(0.0) > 0) {
+    // A moving target: PSF-weighted photometry along its streak (a square detection window does not apply).
+    SpaceFrameOptions frame;
+    apply_frame_geometry(frame, v);
+    StreakCheckOptions o;
+    o.trials = v.integer("--trials");
+    o.seed = c.seed;
+    const StreakCheck check = check_streak(chain, report, frame, o);
+    fmt::print("{}: streak of {:.4g} pixels at the limiting magnitude {:.4f} (S = {:.4g} e-, n_eff {:.4g} px, still {:.4g} px; "
+               "{} frames)\n",
+               c.sensor.sensor, check.streak_px, check.magnitude, check.signal_electrons, check.neff, check.static_neff, check.trials);
+    for (const auto& [name, snr] : {std::pair{"streak", check.streak}, std::pair{"still ", check.still}})
+      fmt::print("  {} {} SNR measured {:.4f} ± {:.2g}, renderer's law {:.4f} (z = {:+.2f})\n", verdict(std::abs(snr.z()) <= max_z),
+                 name, snr.measured, snr.sigma, snr.predicted, snr.z());
+    fmt::print("  chain SNR {:.4f} (S/√(S + n_eff v), SMTN-002)\n", check.chain_snr);
+    fmt::print("  {} SNR loss 2.5 lg(SNR_still/SNR_streak) measured {:.4f} ± {:.2g} mag, renderer's law {:.4f}; chain's trailing "
+               "loss at constant SNR (background-limited) {:.4f}\n",
+               verdict(std::abs(check.measured_snr_loss() - check.predicted_snr_loss()) <= max_z * check.snr_loss_sigma()),
+               check.measured_snr_loss(), check.snr_loss_sigma(), check.predicted_snr_loss(), check.chain_trailing_loss);
+  } else if (is_point_target_sensor(chain)) {
     SpaceFrameOptions frame;
     apply_frame_geometry(frame, v);
     DetectionCheckOptions d;

@@ -231,6 +231,87 @@ FlatFieldCheck check_earth_flat_field(Chain& chain, const Report& report, EarthS
   return check;
 }
 
+double StreakCheck::snr_loss_sigma() const {
+  return 2.5 / std::numbers::ln10 * std::hypot(still.sigma / still.measured, streak.sigma / streak.measured);
+}
+
+bool StreakCheck::passed(double max_z) const {
+  return std::abs(streak.z()) <= max_z && std::abs(still.z()) <= max_z &&
+         std::abs(measured_snr_loss() - predicted_snr_loss()) <= max_z * snr_loss_sigma();
+}
+
+StreakCheck check_streak(Chain& chain, const Report& report, SpaceFrameOptions frame, const StreakCheckOptions& o) {
+  if (o.trials < 10) detail::refuse(chain.sensor_file, "trials", "at least 10 frames");
+  frame.targets.clear();
+  frame.stars.count = 0;
+  frame.flat_field_electrons = 0;
+  frame.no_default_target = true;
+  // Wide enough for the streak while the geometry is resolved; the frame is sized to it below.
+  const double chain_streak = frame.target_streak_px.value_or(
+      detail::result(report, vocabulary::detector_target_streak_pixels).value_or(0.0));
+  frame.width = std::max(frame.width, static_cast<int>(std::min(std::ceil(chain_streak), 1e6)) + 1);
+  const SpaceFrameSetup geometry = space_frame_setup(chain, report, frame);
+  if (!(geometry.target_streak_px > 0))
+    detail::refuse(chain.sensor_file, "streak", "the target does not move (detector.target_rate, sidereal tracking)");
+  const double sigma = geometry.gaussian_fwhm_m / (2.0 * std::sqrt(2.0 * std::numbers::ln2)) / geometry.pixel_pitch_m;
+  const int margin = static_cast<int>(std::ceil(8.0 * sigma)) + 4;
+  frame.width = static_cast<int>(std::ceil(geometry.target_streak_px)) + 2 * margin;
+  frame.height = o.height > 0 ? o.height : 2 * margin;
+  frame.targets = {{frame.width / 2 + 0.5, frame.height / 2 + 0.5, geometry.limiting_magnitude}};
+
+  StreakCheck check;
+  check.trials = o.trials;
+  check.magnitude = geometry.limiting_magnitude;
+  check.streak_px = geometry.target_streak_px;
+  check.chain_snr = geometry.limit_signal_electrons / geometry.limit_noise_electrons;
+  // The moving target, then the same target still: matched filter from each frame's own expected light.
+  auto measure = [&](double streak_px, StreakSnr& out, double& neff, double& signal) {
+    frame.target_streak_px = streak_px;
+    const SpaceFrameSetup s = space_frame_setup(chain, report, frame);
+    const SpaceFrameRenderer renderer(s);
+    const Image expected = renderer.expected_electrons();
+    const double background = s.sky_electrons + s.dark_electrons, total = s.sources.at(0).electrons;
+    std::vector<std::size_t> index;
+    std::vector<double> f;
+    double sum_f2 = 0;
+    for (std::size_t i = 0; i < expected.size(); ++i)
+      if (const double v = (expected.pixels[i] - background) / total; v > 1e-9) {  // float: 1e-7 relative is noise
+        index.push_back(i);
+        f.push_back(v);
+        sum_f2 += v * v;
+      }
+    const double floor_variance = (s.noise.shot ? s.sky_electrons : 0.0) + (s.noise.dark ? s.dark_electrons : 0.0) +
+                                  (s.noise.read ? s.read_noise_electrons * s.read_noise_electrons : 0.0) +
+                                  (s.noise.quantisation ? s.gain_e_per_dn * s.gain_e_per_dn / 12.0 : 0.0);
+    double variance = 0;
+    for (const double v : f) variance += v * v * ((s.noise.shot ? total * v : 0.0) + floor_variance);
+    variance /= sum_f2 * sum_f2;
+    out.predicted = total / std::sqrt(variance);
+    neff = 1.0 / sum_f2;
+    signal = total;
+    Moments m;
+    Image image;
+    for (long t = 0; t < o.trials; ++t) {
+      renderer.render(o.seed + static_cast<std::uint64_t>(t), image);
+      double estimate = 0;
+      for (std::size_t k = 0; k < index.size(); ++k) {
+        const double value = image.pixels[index[k]];
+        const double electrons = s.noise.quantisation ? s.gain_e_per_dn * (value - s.offset_dn) : value;
+        estimate += f[k] * (electrons - background);
+      }
+      m.add(estimate / sum_f2);
+    }
+    out.measured = m.mean() / std::sqrt(m.variance());
+    const double n = static_cast<double>(m.n);
+    out.sigma = std::sqrt(1.0 / n + out.predicted * out.predicted / (2.0 * n));
+  };
+  measure(geometry.target_streak_px, check.streak, check.neff, check.signal_electrons);
+  double still_signal = 0;
+  measure(0.0, check.still, check.static_neff, still_signal);
+  check.chain_trailing_loss = detail::result(report, vocabulary::detector_trailing_loss).value_or(std::nan(""));
+  return check;
+}
+
 FlatFieldCheck check_space_flat_field(Chain& chain, const Report& report, SpaceFrameOptions frame, int size, std::uint64_t seed) {
   frame.targets.clear();
   frame.stars.count = 0;

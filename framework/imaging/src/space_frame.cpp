@@ -7,6 +7,10 @@
 #include "random.hpp"
 #include "space_law.hpp"
 
+#include "radchain/physics/streak.hpp"
+
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -133,8 +137,12 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
   s.pixel_pitch_m = o.pixel_pitch_m ? *o.pixel_pitch_m : result(report, vocabulary::detector_pixel_pitch).value_or(0.0);
   s.f_number = s.focal_length_m > 0 && s.aperture_m > 0 ? s.focal_length_m / s.aperture_m : 0.0;
   const auto chain_wavelength = result(report, vocabulary::optics_psf_wavelength);
-  const auto chain_fwhm = result(report, vocabulary::optics_gaussian_fwhm);
+  // A detector that counts with a Gaussian of seeing ⊕ diffraction (emva1288) publishes it: the frame's PSF.
+  const auto detector_fwhm = result(report, vocabulary::detector_psf_fwhm);
+  const bool detector_gaussian = detector_fwhm && *detector_fwhm > 0;
+  const auto chain_fwhm = detector_gaussian ? detector_fwhm : result(report, vocabulary::optics_gaussian_fwhm);
   if (o.psf) s.psf = *o.psf;
+  else if (detector_gaussian && !o.psf_wavelength_m) s.psf = PsfModel::gaussian;
   else if (o.psf_wavelength_m || chain_wavelength) s.psf = PsfModel::airy;
   else if (o.gaussian_fwhm_m || chain_fwhm) s.psf = PsfModel::gaussian;
   else s.psf = PsfModel::pixel;
@@ -156,11 +164,31 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
   s.stamp_radius_px = o.stamp_radius_px ? std::clamp(*o.stamp_radius_px, 0, 256) : detail::default_stamp_radius(spec);
   if (s.psf == PsfModel::pixel) s.stamp_radius_px = 0;
 
+  // Streaks of a moving target (sidereal tracking) or of the stars (rate tracking).
+  s.target_streak_px = o.target_streak_px ? *o.target_streak_px
+                                          : result(report, vocabulary::detector_target_streak_pixels).value_or(0.0);
+  s.star_streak_px = o.star_streak_px ? *o.star_streak_px : result(report, vocabulary::detector_star_streak_pixels).value_or(0.0);
+  if (!(s.target_streak_px >= 0 && s.star_streak_px >= 0 && s.target_streak_px < 1e6 && s.star_streak_px < 1e6))
+    refuse(file, "streak", "must lie in 0..1e6 pixels");
+  const double longest = std::max(s.target_streak_px, s.star_streak_px);
+  if (longest > 0) {
+    if (s.psf != PsfModel::gaussian)
+      refuse(file, "streak", "a streak is drawn with a Gaussian PSF (seeing, or the optics' psf = \"gaussian\"); this frame's PSF is " +
+                                 to_string(s.psf));
+    if (longest > s.width)
+      refuse(file, "streak", fmt::format("the streak of {:.1f} pixels is longer than the frame ({} pixels wide): give a wider frame",
+                                         longest, s.width));
+  }
+
   // Detector background and ADC.
   s.sky_electrons = o.sky_electrons_per_pixel ? *o.sky_electrons_per_pixel
                                               : result(report, vocabulary::detector_sky_electrons_per_pixel).value_or(0.0);
   if (!(s.sky_electrons >= 0)) refuse(file, "sky", "must be ≥ 0 electrons per pixel");
-  s.gain_e_per_dn = o.gain_e_per_dn ? *o.gain_e_per_dn : s.full_well_electrons / std::exp2(s.adc_bits);
+  // The chain's own system gain K (DN/e-, a datasheet detector) when it publishes one, else full well / 2^bits.
+  const auto system_gain = result(report, vocabulary::detector_system_gain);
+  s.gain_e_per_dn = o.gain_e_per_dn ? *o.gain_e_per_dn
+                    : system_gain   ? 1.0 / *system_gain
+                                    : s.full_well_electrons / std::exp2(s.adc_bits);
   if (!(s.gain_e_per_dn > 0)) refuse(file, "gain", "must be > 0 e-/DN");
   s.offset_dn = o.offset_dn;
 
@@ -234,6 +262,30 @@ struct SpaceFrameRenderer::Impl {
   }
 };
 
+namespace {
+
+// A streak: the Gaussian PSF smeared along +x over `length` pixels, centred on the source's exact position, per
+// pixel s_i g_j (physics/streak.hpp: exact pixel integrals, no sub-pixel rounding).
+void add_streak(const RenderedSource& src, double length, const SpaceFrameSetup& s, std::map<std::size_t, double>& light) {
+  const double sigma = s.gaussian_fwhm_m / (2.0 * std::sqrt(2.0 * std::numbers::ln2)) / s.pixel_pitch_m;
+  const int cx = static_cast<int>(std::floor(src.x_px)), cy = static_cast<int>(std::floor(src.y_px));
+  const double ox = src.x_px - (cx + 0.5), oy = src.y_px - (cy + 0.5);
+  const int across = static_cast<int>(std::ceil(6.0 * sigma)) + 1, along = static_cast<int>(std::ceil(6.0 * sigma + 0.5 * length)) + 1;
+  for (int j = -across; j <= across; ++j) {
+    const int y = cy + j;
+    if (y < 0 || y >= s.height) continue;
+    const double column = physics::gaussian_pixel_fraction(j, sigma, oy);
+    for (int i = -along; i <= along; ++i) {
+      const int x = cx + i;
+      if (x < 0 || x >= s.width) continue;
+      const double v = src.electrons * column * physics::streaked_gaussian_pixel_fraction(i, sigma, length, ox);
+      if (v != 0.0) light[static_cast<std::size_t>(y) * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(x)] += v;
+    }
+  }
+}
+
+}  // namespace
+
 SpaceFrameRenderer::SpaceFrameRenderer(SpaceFrameSetup setup) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.s = std::move(setup);
@@ -249,6 +301,10 @@ SpaceFrameRenderer::SpaceFrameRenderer(SpaceFrameSetup setup) : impl_(std::make_
     m.stamps.locate(src.y_px, py, fy);
     m.pixel.emplace_back(px, py);
     m.phase.emplace_back(fx, fy);
+    if (const double streak = src.target ? s.target_streak_px : s.star_streak_px; streak > 0) {
+      add_streak(src, streak, s, light);
+      continue;
+    }
     const double* stamp = m.stamps.stamp(fx, fy);
     for (int j = -r; j <= r; ++j) {
       const int y = py + j;
@@ -325,6 +381,8 @@ Image SpaceFrameRenderer::expected_electrons() const {
 double SpaceFrameRenderer::window_fraction(std::size_t source, int window) const {
   const Impl& m = *impl_;
   if (source >= m.phase.size()) throw std::out_of_range("window_fraction: no such source");
+  if ((m.s.sources[source].target ? m.s.target_streak_px : m.s.star_streak_px) > 0)
+    throw std::logic_error("window_fraction: a streak has no square-window fraction");
   const double* stamp = m.stamps.stamp(m.phase[source].first, m.phase[source].second);
   const int r = m.stamps.radius(), n = m.stamps.side();
   const int lo = -(window / 2), hi = lo + window - 1;
@@ -377,6 +435,8 @@ Header SpaceFrameRenderer::header(std::uint64_t seed) const {
   if (s.psf == PsfModel::gaussian) number("PSFFWHM", s.gaussian_fwhm_m * 1e6, "[um] Gaussian FWHM");
   integer("PSFOVER", s.oversampling, "PSF phases per pixel");
   integer("PSFRAD", s.stamp_radius_px, "[pixel] PSF stamp half-size");
+  if (s.target_streak_px > 0) number("STREAK", s.target_streak_px, "[pixel] target streak along +x (sidereal tracking)");
+  if (s.star_streak_px > 0) number("STARSTRK", s.star_streak_px, "[pixel] star streaks along +x (rate tracking)");
   number("LIMMAG", s.limiting_magnitude, "limiting magnitude (solved)");
   number("SNRTHR", s.snr_threshold, "detection threshold T on S/n");
   number("SIGLIM", s.limit_signal_electrons, "[e-] chain signal at LIMMAG (window)");

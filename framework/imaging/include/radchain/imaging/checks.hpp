@@ -27,10 +27,20 @@
 //     width sinc(νΔ), Δ = ¼ pixel. Compared with system_mtf() along the edge normal, times the scene's own
 //     pixel box sinc(ν · input sampling).
 // (c) Flat fields: the measured SNR and noise of uniform frames against the chain's noise budget.
+// (d) Streaks (moving targets, issue 13 item 7): PSF-weighted photometry of a streak — the matched filter
+//     F̂ = Σ w_i (e_i − B_i), w_i = f_i / Σ f_j² with f_i the rendered streak's pixel fractions (from the frame's
+//     own expected electrons), which is unbiased (Σ w_i f_i = 1) — over many frames: measured SNR = mean/std of F̂
+//     against the renderer's own law, S / √(Σ w_i² (S f_i + B + N_d + σ_read² + g²/12)), and against the chain's
+//     detector.snr = S / √(S + n_eff v) (SMTN-002's form, n_eff = 1/Σ f_i²; it counts the source's own shot noise
+//     as S where the matched filter has S Σf³/(Σf²)², 4/3 S for a Gaussian, so the two agree where the sky
+//     dominates). The same target not moving gives the still SNR; 2.5 lg(SNR_still/SNR_streak) at the same
+//     magnitude is the loss as rendered. It equals the chain's detector.trailing_loss (1.25 lg of the n_eff ratio:
+//     magnitudes at constant SNR) only where the sky dominates both: the still target's own shot noise lowers it.
 #include "radchain/chain.hpp"
 #include "radchain/imaging/earth_scene.hpp"
 #include "radchain/imaging/space_frame.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -121,5 +131,30 @@ FlatFieldCheck check_earth_flat_field(Chain& chain, const Report& report, EarthS
 // measured over n×n windows: SNR of the window sum against the report's detector.snr.
 FlatFieldCheck check_space_flat_field(Chain& chain, const Report& report, SpaceFrameOptions frame, int size = 256,
                                       std::uint64_t seed = 1);
+
+struct StreakCheckOptions {
+  long trials = 2000;  // frames (each with the moving and the still target)
+  int height = 0;      // rows; 0: 16σ + 8 (the width: the streak + 16σ + 8)
+  std::uint64_t seed = 1;
+};
+struct StreakSnr {
+  double predicted = 0;  // the renderer's law for the matched filter
+  double measured = 0;   // mean / std over the frames
+  double sigma = 0;      // statistical error of `measured`: √(1/N + SNR²/(2N))
+  double z() const { return (measured - predicted) / sigma; }
+};
+struct StreakCheck {
+  double magnitude = 0, streak_px = 0, signal_electrons = 0, neff = 0, static_neff = 0;
+  double chain_snr = 0, chain_trailing_loss = 0;  // detector.snr, detector.trailing_loss
+  long trials = 0;
+  StreakSnr streak, still;
+  // 2.5 lg(SNR_still / SNR_streak) at the same magnitude: measured, by the renderer's law, and its statistical error.
+  double measured_snr_loss() const { return 2.5 * std::log10(still.measured / streak.measured); }
+  double predicted_snr_loss() const { return 2.5 * std::log10(still.predicted / streak.predicted); }
+  double snr_loss_sigma() const;
+  bool passed(double max_z = 4.0) const;  // both SNRs and the SNR loss within max_z σ of the renderer's law
+};
+// (d) at the limiting magnitude, the streak of the chain's detector.target_streak_pixels (refused when 0).
+StreakCheck check_streak(Chain& chain, const Report& report, SpaceFrameOptions frame, const StreakCheckOptions& options = {});
 
 }  // namespace radchain::render

@@ -87,6 +87,11 @@ struct SpaceFrameOptions {
   std::optional<PsfModel> psf;
   std::optional<double> psf_wavelength_m, gaussian_fwhm_m, obscuration;
   int oversampling = 8;                  // PSF phases per pixel: positions are rounded to 1/oversampling pixel
+  // Moving targets: streak lengths along +x per frame in pixels (targets: sidereal tracking; stars: rate
+  // tracking); unset = from the chain (detector.target_streak_pixels, detector.star_streak_pixels), else 0.
+  // A streak is the Gaussian PSF convolved with the segment, exact per pixel (physics/streak.hpp), starting
+  // half a streak before the position given and ending half a streak after it.
+  std::optional<double> target_streak_px, star_streak_px;
   std::optional<int> stamp_radius_px;    // PSF stamp half-size (default: 99.9 % of the energy, at most 32)
 
   // Detector; unset = from the chain (detector.sky_electrons_per_pixel, else 0; full_well / 2^adc_bits).
@@ -112,6 +117,7 @@ struct SpaceFrameSetup {
   PsfModel psf = PsfModel::pixel;
   double psf_wavelength_m = 0, gaussian_fwhm_m = 0;
   int oversampling = 8, stamp_radius_px = 0;
+  double target_streak_px = 0, star_streak_px = 0;  // along +x, pixels per frame
   // detector, per pixel and frame
   double integration_time_s = 0, dark_electrons = 0, read_noise_electrons = 0, sky_electrons = 0;
   double full_well_electrons = 0, gain_e_per_dn = 0, offset_dn = 0;
