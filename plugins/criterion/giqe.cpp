@@ -11,7 +11,7 @@
 // NIIRS. Mode "giqe5" is the default (DESIGN.md §8: the standard a practitioner uses today).
 #include "radchain/physics/earth_geometry.hpp"
 #include "radchain/physics/giqe.hpp"
-#include "radchain/physics/mtf.hpp"
+#include "radchain/physics/mtf_budget.hpp"
 #include "radchain/physics/pushbroom.hpp"
 #include "radchain/plugin.hpp"
 
@@ -84,6 +84,15 @@ class Giqe final : public Stage {
     id_mtf_pixel_ = c.declare("mtf_nyquist_pixel", "1", "|sinc(π p ν)| at Nyquist = 2/π");
     id_mtf_other_ = c.declare("mtf_nyquist_other", "1", "jitter × smear × diffusion × wavefront × TDI at Nyquist");
     id_q_ = c.declare("q_factor", "1", "Q = λN/p (sampling of the optics)");
+    // The budget's inputs, so that `radchain mtf` draws the same cascade (physics/mtf_budget.hpp).
+    id_budget_wavelength_ = c.declare("mtf_wavelength", "m", "input λ of the diffraction MTF", "um");
+    id_budget_pitch_ = c.declare("sample_pitch", "m", "pixel pitch p (one sample)", "um");
+    id_budget_jitter_ = c.declare("jitter_rms", "m", "input rms jitter on the focal plane", "um");
+    id_budget_smear_ = c.declare("smear_length", "m", "smear_pixels × p", "um");
+    id_budget_diffusion_ = c.declare("diffusion_rms", "m", "input rms diffusion spread", "um");
+    id_budget_wfe_ = c.declare("wavefront_error", "1", "input rms wavefront error (waves)");
+    id_budget_tdi_stages_ = c.declare("tdi_stages", "1", "input TDI stages");
+    id_budget_tdi_mismatch_ = c.declare("tdi_mismatch", "1", "input TDI mismatch per stage (pixels)");
   }
 
   void evaluate(Context& c) override {
@@ -97,16 +106,9 @@ class Giqe final : public Stage {
                                  physics::gsd_along_track_m(h, roll, pitch, ifov, r));
     const double n = c.results.value(f_number_), lambda = *wavelength_;
     const double eps = obscuration_ ? c.results.value(*obscuration_) : 0.0;
+    const physics::MtfBudget budget{lambda, n, eps, p, *jitter_, *smear_ * p, *diffusion_, *wfe_, *tdi_stages_, *tdi_mismatch_};
     // The MTF in cycles per sample u (ν = u/p).
-    auto others = [&](double nu) {
-      return physics::jitter_mtf(nu, *jitter_) * physics::linear_smear_mtf(nu, *smear_ * p) *
-             physics::diffusion_mtf(nu, *diffusion_) * physics::wavefront_error_mtf(nu, lambda, n, *wfe_) *
-             physics::tdi_synchronisation_mtf(nu, *tdi_stages_, *tdi_mismatch_, p);
-    };
-    auto system = [&](double u) {
-      const double nu = u / p;
-      return physics::diffraction_mtf(nu, lambda, n, eps) * physics::detector_pixel_mtf(nu, p) * others(nu);
-    };
+    auto system = [&](double u) { return physics::mtf_components(budget, u / p).system(); };
     const double cutoff_samples = p * physics::diffraction_cutoff_frequency_per_m(lambda, n);
     constexpr int panels = 1000;
     const double rer = params_.has("rer") ? *rer_ : physics::relative_edge_response(system, cutoff_samples, panels);
@@ -124,11 +126,20 @@ class Giqe final : public Stage {
     c.results.set(id_required_, *required_);
     c.results.set(id_margin_, niirs / *required_ - 1.0);
     c.results.set(id_nyquist_, nyquist);
+    const physics::MtfComponents at_nyquist = physics::mtf_components(budget, nyquist);
     c.results.set(id_mtf_system_, system(0.5));
-    c.results.set(id_mtf_diffraction_, physics::diffraction_mtf(nyquist, lambda, n, eps));
-    c.results.set(id_mtf_pixel_, physics::detector_pixel_mtf(nyquist, p));
-    c.results.set(id_mtf_other_, others(nyquist));
+    c.results.set(id_mtf_diffraction_, at_nyquist.diffraction);
+    c.results.set(id_mtf_pixel_, at_nyquist.pixel);
+    c.results.set(id_mtf_other_, at_nyquist.others());
     c.results.set(id_q_, lambda * n / p);
+    c.results.set(id_budget_wavelength_, lambda);
+    c.results.set(id_budget_pitch_, p);
+    c.results.set(id_budget_jitter_, budget.jitter_rms_m);
+    c.results.set(id_budget_smear_, budget.smear_m);
+    c.results.set(id_budget_diffusion_, budget.diffusion_rms_m);
+    c.results.set(id_budget_wfe_, budget.wavefront_error_waves);
+    c.results.set(id_budget_tdi_stages_, budget.tdi_stages);
+    c.results.set(id_budget_tdi_mismatch_, budget.tdi_mismatch);
   }
 
  private:
@@ -140,7 +151,9 @@ class Giqe final : public Stage {
   std::optional<ResultId> roll_, pitch_angle_, radius_, obscuration_, detector_snr_, pitch_term_;
   std::optional<ResultId> id_overshoot_;
   ResultId id_gsd_{}, id_gsd_inch_{}, id_rer_{}, id_snr_{}, id_niirs_{}, id_required_{}, id_margin_{},
-      id_nyquist_{}, id_mtf_system_{}, id_mtf_diffraction_{}, id_mtf_pixel_{}, id_mtf_other_{}, id_q_{};
+      id_nyquist_{}, id_mtf_system_{}, id_mtf_diffraction_{}, id_mtf_pixel_{}, id_mtf_other_{}, id_q_{},
+      id_budget_wavelength_{}, id_budget_pitch_{}, id_budget_jitter_{}, id_budget_smear_{}, id_budget_diffusion_{},
+      id_budget_wfe_{}, id_budget_tdi_stages_{}, id_budget_tdi_mismatch_{};
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
 // MTF curves of the Kolobrodov design: end points and the matching condition of eq. (11).
 #include "radchain/imaging/mtf_curves.hpp"
+#include "radchain/sensor_file.hpp"
 
 #include <gtest/gtest.h>
 
@@ -24,4 +25,37 @@ TEST(MtfCurves, KolobrodovComputedDesign) {
   EXPECT_NEAR(eq7, 0.5, 1e-9);
   const std::string csv = radchain::mtf_curves_csv(c);
   EXPECT_NE(csv.find("frequency_mm-1,diffraction,objective_eq7,detector_eq8,system_eq10\n"), std::string::npos);
+}
+
+// The MTF budget of an Earth-observation camera (WorldView-2 pan, giqe criterion), against the closed forms: the
+// clear-pupil diffraction MTF (2/π)(acos x − x√(1 − x²)), x = λNν (Goodman 2005 eq. 6-32), the pixel 2/π at
+// Nyquist, and a Gaussian jitter exp(−2π²σ²ν²) set on the command line.
+TEST(MtfCurves, EarthObservationBudget) {
+  radchain::Chain chain = radchain::load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/worldview-2-pan.toml",
+                                                {{"criteria.iq.jitter_rms", "\"2 um\""}});
+  const radchain::Report report = chain.run();
+  ASSERT_TRUE(radchain::has_mtf_budget(report));
+  const radchain::MtfBudgetCurves c = radchain::mtf_budget_curves(report);
+  EXPECT_EQ(c.criterion, "criteria.iq");
+  ASSERT_EQ(c.frequency_per_m.size(), 201u);
+  const double lambda = 625e-9, n = 13.3 / 1.1, p = 8e-6, sigma = 2e-6, nyquist = 0.5 / p;
+  EXPECT_NEAR(c.nyquist_per_m, nyquist, 1e-9);
+  EXPECT_NEAR(c.frequency_per_m[100], nyquist, 1e-9);  // Nyquist is the middle grid point
+  const radchain::physics::MtfComponents& m = c.components[100];
+  const double x = lambda * n * nyquist;
+  const double diffraction = 2 / M_PI * (std::acos(x) - x * std::sqrt(1 - x * x));
+  EXPECT_NEAR(m.diffraction, diffraction, 1e-9);
+  EXPECT_NEAR(m.pixel, 2 / M_PI, 1e-12);
+  EXPECT_NEAR(m.jitter, std::exp(-2 * M_PI * M_PI * sigma * sigma * nyquist * nyquist), 1e-12);
+  EXPECT_NEAR(m.smear * m.diffusion * m.wavefront * m.tdi, 1.0, 1e-12);  // not set in the file
+  // The system at Nyquist is the criterion's own mtf_nyquist_system.
+  EXPECT_NEAR(m.system(), *report.value("criteria.iq.mtf_nyquist_system"), 1e-12);
+  EXPECT_NEAR(m.system(), diffraction * 2 / M_PI * m.jitter, 1e-9);
+  const std::string csv = radchain::mtf_budget_csv(c);
+  EXPECT_NE(csv.find("frequency_mm-1,diffraction,pixel,jitter,smear,diffusion,wavefront,tdi,system\n"), std::string::npos);
+  EXPECT_NE(csv.find("# Nyquist 1/(2p) = 62.5 mm-1"), std::string::npos) << csv.substr(0, 400);
+  // Kolobrodov's design has no budget.
+  radchain::Chain kolobrodov =
+      radchain::load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/kolobrodov-1996-ccd151-computed.toml");
+  EXPECT_FALSE(radchain::has_mtf_budget(kolobrodov.run()));
 }

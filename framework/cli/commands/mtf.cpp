@@ -1,5 +1,5 @@
-// `radchain mtf` (in the imaging module): MTF curves of a pushbroom design (Kolobrodov 1996 Fig. 2) as CSV and
-// optionally a PNG.
+// `radchain mtf` (in the imaging module): MTF curves of a pushbroom design (Kolobrodov 1996 Fig. 2), or the MTF
+// budget of an Earth-observation camera (every component and the system, Nyquist named), as CSV and optionally a PNG.
 #include "imaging_common.hpp"
 #include "../overrides.hpp"
 #include "../plot.hpp"
@@ -7,6 +7,7 @@
 #include "radchain/atomic_file.hpp"
 #include "radchain/error.hpp"
 #include "radchain/imaging/mtf_curves.hpp"
+#include "radchain/vocabulary.hpp"
 
 #include <fmt/format.h>
 
@@ -15,11 +16,9 @@
 
 namespace radchain::cli {
 
-int mtf_command(const MtfCommand& options) {
-  Chain chain = load_sensor_of(options.sensor);
-  const Report report = chain.run();
-  const MtfCurves curves = mtf_curves(report);
-  const std::string csv = mtf_curves_csv(curves);
+namespace {
+
+void write_csv(const MtfCommand& options, const std::string& csv) {
   if (options.out.empty()) {
     std::cout << csv;
   } else {
@@ -27,6 +26,44 @@ int mtf_command(const MtfCommand& options) {
     file.stream() << csv;
     file.commit();
   }
+}
+
+// An Earth-observation camera's budget (a giqe criterion): every component and the system, Nyquist named.
+int budget_command(const MtfCommand& options, const Report& report) {
+  const MtfBudgetCurves curves = mtf_budget_curves(report);
+  write_csv(options, mtf_budget_csv(curves));
+  if (!options.plot.empty()) {
+    std::vector<double> frequency_mm;
+    std::vector<std::vector<double>> columns(8);
+    for (std::size_t i = 0; i < curves.frequency_per_m.size(); ++i) {
+      frequency_mm.push_back(curves.frequency_per_m[i] * 1e-3);
+      const physics::MtfComponents& m = curves.components[i];
+      const double values[] = {m.diffraction, m.pixel, m.jitter, m.smear, m.diffusion, m.wavefront, m.tdi, m.system()};
+      for (std::size_t k = 0; k < columns.size(); ++k) columns[k].push_back(values[k]);
+    }
+    const physics::MtfComponents at_nyquist = physics::mtf_components(curves.budget, curves.nyquist_per_m);
+    plot_sweep(options.plot,
+               fmt::format("{}: MTF budget; Nyquist {:.4g} mm-1 (mid-axis), system MTF {:.3f} there", report.sensor_name,
+                           curves.nyquist_per_m * 1e-3, at_nyquist.system()),
+               "spatial frequency (mm-1)", frequency_mm,
+               {{"diffraction", "", columns[0]}, {"pixel", "", columns[1]}, {"jitter", "", columns[2]},
+                {"smear", "", columns[3]}, {"diffusion", "", columns[4]}, {"wavefront", "", columns[5]},
+                {"TDI", "", columns[6]}, {"system", "", columns[7]}});
+  }
+  return report.all_passed() ? 0 : 1;
+}
+
+}  // namespace
+
+int mtf_command(const MtfCommand& options) {
+  Chain chain = load_sensor_of(options.sensor);
+  const Report report = chain.run();
+  // Kolobrodov's design (an mtf_match criterion) keeps its Fig. 2 curves; otherwise the camera's MTF budget.
+  bool kolobrodov_design = false;
+  for (const auto& r : report.results) kolobrodov_design = kolobrodov_design || vocabulary::criterion_required_quality.matches(r.name);
+  if (!kolobrodov_design && has_mtf_budget(report)) return budget_command(options, report);
+  const MtfCurves curves = mtf_curves(report);
+  write_csv(options, mtf_curves_csv(curves));
   if (!options.plot.empty()) {
     std::vector<double> frequency_mm;
     for (double nu : curves.frequency_per_m) frequency_mm.push_back(nu * 1e-3);

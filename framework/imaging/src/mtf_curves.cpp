@@ -50,4 +50,67 @@ std::string mtf_curves_csv(const MtfCurves& c) {
   return out;
 }
 
+namespace {
+// "criteria.<name>" of the criterion publishing the budget (a giqe criterion's mtf_nyquist_system), or "".
+std::string budget_criterion(const Report& report) {
+  const std::string key = ".mtf_nyquist_system";
+  for (const auto& r : report.results)
+    if (r.name.starts_with("criteria.") && r.name.ends_with(key)) return r.name.substr(0, r.name.size() - key.size());
+  return {};
+}
+}  // namespace
+
+bool has_mtf_budget(const Report& report) { return !budget_criterion(report).empty(); }
+
+MtfBudgetCurves mtf_budget_curves(const Report& report, int points) {
+  MtfBudgetCurves c;
+  c.criterion = budget_criterion(report);
+  auto need = [&](const std::string& name) {
+    const auto v = report.value(name);
+    if (!v) throw InputError(SourceLocation{report.sensor_file, 0, 0}, "mtf", name,
+                             "this sensor publishes no such result: an MTF budget needs a telescope with a focal length "
+                             "and a giqe criterion");
+    return *v;
+  };
+  if (c.criterion.empty()) need("criteria.<name>.mtf_nyquist_system");
+  physics::MtfBudget& b = c.budget;
+  b.f_number = need(std::string(vocabulary::optics_f_number.name));
+  b.obscuration = report.value(std::string(vocabulary::optics_obscuration.name)).value_or(0.0);
+  b.wavelength_m = need(c.criterion + ".mtf_wavelength");
+  b.pitch_m = need(c.criterion + ".sample_pitch");
+  b.jitter_rms_m = need(c.criterion + ".jitter_rms");
+  b.smear_m = need(c.criterion + ".smear_length");
+  b.diffusion_rms_m = need(c.criterion + ".diffusion_rms");
+  b.wavefront_error_waves = need(c.criterion + ".wavefront_error");
+  b.tdi_stages = need(c.criterion + ".tdi_stages");
+  b.tdi_mismatch = need(c.criterion + ".tdi_mismatch");
+  c.nyquist_per_m = physics::nyquist_frequency_per_m(b.pitch_m);
+  const int n = points % 2 ? points : points + 1;  // odd: the middle point is Nyquist exactly
+  for (int i = 0; i < n; ++i) {
+    const double nu = 2.0 * c.nyquist_per_m * i / (n - 1);
+    c.frequency_per_m.push_back(nu);
+    c.components.push_back(physics::mtf_components(b, nu));
+  }
+  return c;
+}
+
+std::string mtf_budget_csv(const MtfBudgetCurves& c) {
+  const physics::MtfBudget& b = c.budget;
+  const physics::MtfComponents at_nyquist = physics::mtf_components(b, c.nyquist_per_m);
+  std::string out = fmt::format(
+      "# MTF budget of {}: lambda = {:.4g} um, N = {:.4g}, obscuration = {:.4g}, p = {:.4g} um, jitter = {:.4g} um, "
+      "smear = {:.4g} um, diffusion = {:.4g} um, WFE = {:.4g} waves, TDI {:.4g} stages (mismatch {:.4g} px)\n"
+      "# Nyquist 1/(2p) = {:.6g} mm-1: system MTF {:.6f} (diffraction {:.6f}, pixel {:.6f})\n"
+      "frequency_mm-1,diffraction,pixel,jitter,smear,diffusion,wavefront,tdi,system\n",
+      c.criterion, b.wavelength_m * 1e6, b.f_number, b.obscuration, b.pitch_m * 1e6, b.jitter_rms_m * 1e6,
+      b.smear_m * 1e6, b.diffusion_rms_m * 1e6, b.wavefront_error_waves, b.tdi_stages, b.tdi_mismatch,
+      c.nyquist_per_m * 1e-3, at_nyquist.system(), at_nyquist.diffraction, at_nyquist.pixel);
+  for (std::size_t i = 0; i < c.frequency_per_m.size(); ++i) {
+    const physics::MtfComponents& m = c.components[i];
+    out += fmt::format("{:.6g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", c.frequency_per_m[i] * 1e-3,
+                       m.diffraction, m.pixel, m.jitter, m.smear, m.diffusion, m.wavefront, m.tdi, m.system());
+  }
+  return out;
+}
+
 }  // namespace radchain
