@@ -60,6 +60,14 @@ struct Moments {
   double variance() const { return (sum2 - sum * sum / static_cast<double>(n)) / static_cast<double>(n - 1); }
 };
 
+// A check places its own sources: no targets, stars or flat field from the caller's frame options.
+void clear_sources(SpaceFrameOptions& frame) {
+  frame.targets.clear();
+  frame.stars.count = 0;
+  frame.flat_field_electrons = 0;
+  frame.no_default_target = true;
+}
+
 }  // namespace
 
 double Rate::binomial_sigma() const {
@@ -81,10 +89,7 @@ bool FlatFieldCheck::passed(double max_z) const { return std::abs(measured_snr -
 
 DetectionCheck check_detection(Chain& chain, const Report& report, SpaceFrameOptions frame, const DetectionCheckOptions& o) {
   if (o.trials < 10) detail::refuse(chain.sensor_file, "trials", "at least 10 frames");
-  frame.targets.clear();
-  frame.stars.count = 0;
-  frame.flat_field_electrons = 0;
-  frame.no_default_target = true;
+  clear_sources(frame);
   frame.width = frame.height = std::max(o.frame_size, 4);
   const SpaceFrameSetup geometry = space_frame_setup(chain, report, frame);
   const int n = window_side(geometry), r = geometry.stamp_radius_px;
@@ -242,10 +247,7 @@ bool StreakCheck::passed(double max_z) const {
 
 StreakCheck check_streak(Chain& chain, const Report& report, SpaceFrameOptions frame, const StreakCheckOptions& o) {
   if (o.trials < 10) detail::refuse(chain.sensor_file, "trials", "at least 10 frames");
-  frame.targets.clear();
-  frame.stars.count = 0;
-  frame.flat_field_electrons = 0;
-  frame.no_default_target = true;
+  clear_sources(frame);
   // Wide enough for the streak while the geometry is resolved; the frame is sized to it below.
   const double chain_streak = frame.target_streak_px.value_or(
       detail::result(report, vocabulary::detector_target_streak_pixels).value_or(0.0));
@@ -313,10 +315,7 @@ StreakCheck check_streak(Chain& chain, const Report& report, SpaceFrameOptions f
 }
 
 FlatFieldCheck check_space_flat_field(Chain& chain, const Report& report, SpaceFrameOptions frame, int size, std::uint64_t seed) {
-  frame.targets.clear();
-  frame.stars.count = 0;
-  frame.no_default_target = true;
-  frame.flat_field_electrons = 0;
+  clear_sources(frame);
   frame.width = frame.height = std::max(size, 8);
   const SpaceFrameSetup geometry = space_frame_setup(chain, report, frame);
   const int n = window_side(geometry);
