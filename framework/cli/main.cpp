@@ -85,6 +85,9 @@ int main(int argc, char** argv) {
   cli::add_output(cat_cmd, catalogue.output, "text (default), csv or json");
   cli::add_no_solve(cat_cmd, catalogue.no_solve);
   cat_cmd->add_flag("--tables", catalogue.tables, "also compute each file's [[table]] entries (e.g. limiting magnitude vs exposure), a row per cell");
+  cat_cmd->add_option("--uncertainty", catalogue.uncertainty,
+                      "N Monte Carlo samples of each file's [uncertainty]: 5 % and 95 % rows per solved or checked result")
+      ->check(CLI::Range(std::size_t{2}, std::size_t{10000000}));
   cli::add_solver(cat_cmd, catalogue.solver);
   cli::add_batch(cat_cmd, catalogue.batch);
 
@@ -127,8 +130,7 @@ int main(int argc, char** argv) {
   cli::add_sensor(uncertainty_cmd, uncertainty.sensor);
   uncertainty_cmd->add_option("--vary", uncertainty.vary,
                               "an input's distribution in its units: key=normal(mean, sd) | uniform(lo, hi) | lognormal(mean, sd) | "
-                              "triangular(lo, mode, hi) (repeatable)")
-      ->required();
+                              "triangular(lo, mode, hi) (repeatable; adds to or replaces the file's [uncertainty])");
   uncertainty_cmd->add_option("--results", uncertainty.results, "results (comma-separated), e.g. target.magnitude")
       ->delimiter(',')
       ->required();

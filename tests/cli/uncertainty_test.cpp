@@ -5,6 +5,7 @@
 #include "radchain/error.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <numbers>
@@ -131,6 +132,76 @@ TEST(UncertaintyCli, BadInputIsOneLineAndExit2) {
     EXPECT_EQ(count_lines(r.err), 1u) << k.arguments << "\n" << r.err;
     EXPECT_NE(r.err.find(k.expected), std::string::npos) << k.arguments << "\n" << r.err;
   }
+}
+
+}  // namespace
+
+namespace {
+using namespace radchain;
+using namespace radchain::test;
+
+const std::string tolerances_file = source_dir + "/examples/sbv-tolerances.toml";
+const char* file_distributions =
+    " --vary 'optics.transmittance=normal(0.56, 0.02)' --vary 'detector.qe=normal(0.27, 0.0135)'"
+    " --vary 'detector.read_noise=uniform(4 e-, 6 e-)'";
+
+// The file's [uncertainty] is what --vary of the same distributions does, byte for byte; a --vary of a key the
+// file varies replaces the file's distribution; without either there is nothing to vary (one line, exit 2).
+TEST(UncertaintySection, TheFileTolerancesAreTheSameAsVary) {
+  Scratch scratch;
+  const std::string tail = " --results target.magnitude --samples 400 --format csv";
+  const CliResult from_file = run_cli(scratch, "uncertainty '" + tolerances_file + "'" + tail);
+  const CliResult from_vary = run_cli(scratch, "uncertainty '" + sbv_file + "'" + file_distributions + tail);
+  ASSERT_EQ(from_file.exit_code, 0) << from_file.err;
+  ASSERT_EQ(from_vary.exit_code, 0) << from_vary.err;
+  EXPECT_EQ(from_file.out, from_vary.out);
+
+  const CliResult replaced = run_cli(scratch, "uncertainty '" + tolerances_file + "' --vary 'detector.qe=normal(0.27, 0.001)'" + tail);
+  const CliResult by_hand = run_cli(scratch, "uncertainty '" + sbv_file +
+                                                 "' --vary 'optics.transmittance=normal(0.56, 0.02)' --vary 'detector.qe=normal(0.27, 0.001)'"
+                                                 " --vary 'detector.read_noise=uniform(4 e-, 6 e-)'" + tail);
+  ASSERT_EQ(replaced.exit_code, 0) << replaced.err;
+  EXPECT_EQ(replaced.out, by_hand.out);
+
+  const CliResult nothing = run_cli(scratch, "uncertainty '" + sbv_file + "' --results target.magnitude");
+  EXPECT_EQ(nothing.exit_code, 2);
+  EXPECT_EQ(count_lines(nothing.err), 1u) << nothing.err;
+  EXPECT_NE(nothing.err.find("nothing to vary"), std::string::npos) << nothing.err;
+}
+
+// catalogue --uncertainty N: the 5 % and 95 % rows equal `radchain uncertainty`'s percentiles of the same samples
+// (seed 1) and bracket the nominal limiting magnitude; files without [uncertainty] get no such rows.
+TEST(UncertaintySection, CatalogueShowsTheFivetoNinetyFivePercentBand) {
+  Scratch scratch;
+  const CliResult cat = run_cli(scratch, "catalogue --format json --uncertainty 400 '" + tolerances_file + "' '" + sbv_file + "'");
+  ASSERT_EQ(cat.exit_code, 0) << cat.err;
+  const auto rows = nlohmann::json::parse(cat.out)["rows"];
+  double p5 = NAN, p95 = NAN, nominal = NAN;
+  std::size_t band_rows = 0;
+  for (const auto& row : rows) {
+    const std::string name = row["result"];
+    if (name.find(" @ ") != std::string::npos) {
+      ++band_rows;
+      EXPECT_EQ(row["sensor"], "sbv-tolerances");
+    }
+    if (row["sensor"] != "sbv-tolerances") continue;
+    if (name == "target.magnitude @ 5 %") p5 = row["computed"].get<double>();
+    if (name == "target.magnitude @ 95 %") p95 = row["computed"].get<double>();
+    if (name == "target.magnitude") nominal = row["computed"].get<double>();
+  }
+  EXPECT_EQ(band_rows, 2u);
+  EXPECT_LT(p5, nominal);
+  EXPECT_GT(p95, nominal);
+  const CliResult mc = run_cli(scratch, "uncertainty '" + tolerances_file + "' --results target.magnitude --samples 400 --format json");
+  ASSERT_EQ(mc.exit_code, 0) << mc.err;
+  double mc_p5 = NAN, mc_p95 = NAN;
+  for (const auto& row : nlohmann::json::parse(mc.out)["rows"]) {
+    if (row["input"] != "") continue;
+    if (row["statistic"] == "p5") mc_p5 = row["value"].get<double>();
+    if (row["statistic"] == "p95") mc_p95 = row["value"].get<double>();
+  }
+  EXPECT_NEAR(p5, mc_p5, 1e-4);  // the catalogue prints 6 significant digits
+  EXPECT_NEAR(p95, mc_p95, 1e-4);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "radchain/batch/shard.hpp"
 #include "radchain/batch/table.hpp"
 #include "radchain/batch/thread_pool.hpp"
+#include "radchain/batch/uncertainty.hpp"
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
 #include "radchain/units.hpp"
@@ -178,6 +179,42 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
   return rows;
 }
 
+// --uncertainty N: the 5 % and 95 % points of each checked result and solved unknown under the file's
+// [uncertainty] tolerances (Monte Carlo, seed 1, solves at every sample; batch/uncertainty.hpp).
+static std::vector<std::vector<std::string>> uncertainty_rows(const std::string& file, const Chain& chain, const Report& report,
+                                                       const CatalogueOptions& options) {
+  UncertaintyOptions u;
+  u.sensor_file = file;
+  u.overrides = options.overrides;
+  u.no_solve = options.no_solve;
+  u.solver = options.solver;
+  u.samples = options.uncertainty_samples;
+  auto add = [&](const std::string& name) {
+    if (std::find(u.results.begin(), u.results.end(), name) == u.results.end()) u.results.push_back(name);
+  };
+  for (const auto& s : report.solves) add(s.spec.unknown);
+  for (const auto& e : report.expectations)
+    if (e.found) add(e.spec.result);
+  std::vector<std::vector<std::string>> rows;
+  if (u.results.empty()) return rows;
+  const Uncertainty mc = run_uncertainty(u);
+  const std::string stem = fs::path(file).stem().string();
+  std::vector<std::string> varied;
+  for (const auto& v : mc.inputs) varied.push_back(v.key);
+  for (const auto& s : mc.results) {
+    const ResultInfo& info = chain.results().info(*chain.results().find(s.name));
+    for (const auto& [label, value] : {std::pair{"5 %", s.p5}, std::pair{"95 %", s.p95}}) {
+      auto row = empty_row(stem);
+      row[result] = fmt::format("{} @ {}", s.name, label);
+      if (!std::isnan(value)) row[computed] = value6(value * info.display_factor);
+      row[unit] = unit_cell(info.display_unit);
+      row[note] = fmt::format("Monte Carlo over [uncertainty] ({}): {} of {} samples used", join(varied), mc.used, mc.samples);
+      rows.push_back(std::move(row));
+    }
+  }
+  return rows;
+}
+
 std::vector<std::string> catalogue_error_row(const std::string& file, const std::string& message) {
   auto row = empty_row(fs::path(file).stem().string());
   row[check] = "ERROR";
@@ -219,6 +256,8 @@ int run_catalogue(const std::vector<std::string>& files, const CatalogueOptions&
             chain.solver = options.solver;
             const Report report = chain.run();
             out.rows = catalogue_rows(file, report, options.extra_results);
+            if (options.uncertainty_samples > 0 && !chain.uncertainties.empty())
+              for (auto& row : uncertainty_rows(file, chain, report, options)) out.rows.push_back(std::move(row));
           } catch (const InputError& error) {
             out.error = error.what();
           } catch (const std::exception& error) {
@@ -248,6 +287,7 @@ std::string catalogue_job(const std::vector<std::string>& files, const Catalogue
   for (const auto& r : options.extra_results) job += "result " + r + "\n";
   if (options.no_solve) job += "no-solve\n";
   if (options.tables) job += "tables\n";
+  if (options.uncertainty_samples > 0) job += fmt::format("uncertainty {}\n", options.uncertainty_samples);
   if (options.solver == SolverChoice::root) job += "solver root\n";
   return job;
 }

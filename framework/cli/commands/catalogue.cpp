@@ -16,6 +16,7 @@ int catalogue(const CatalogueCommand& command) {
   options.extra_results = command.results;
   options.no_solve = command.no_solve;
   options.tables = command.tables;
+  options.uncertainty_samples = command.uncertainty;
   options.solver = command.solver == "root" ? SolverChoice::root : SolverChoice::automatic;
   options.shard = shard_of(command.batch);
   const TableFormat format = format_of(command.output, TableFormat::text);

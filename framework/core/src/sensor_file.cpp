@@ -1,6 +1,7 @@
 // Sensor file -> Chain: parse, apply --set overrides, load one plugin per section, validate every key
 // against the plugin's schema, then read [[solve]] and [expected].
 #include "radchain/chain.hpp"
+#include "radchain/distribution.hpp"
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
 #include "radchain/sensor_file.hpp"
@@ -20,7 +21,8 @@ const std::vector<std::string> stage_sections = {"source", "atmosphere", "target
 // none of them, and a stage that needs light then refuses, located at its own section.
 const std::vector<std::string> light_sections = {"source", "atmosphere", "target"};
 const std::vector<std::string> top_level_keys = {"sensor", "platform", "source", "target", "atmosphere", "optics",
-                                                 "detector", "criteria", "solve", "expected", "table"};
+                                                 "detector", "criteria", "solve", "expected", "table",
+                                                 "uncertainty"};
 
 void apply_override(ConfigValue& root, const Override& o) {
   const SourceLocation where{"--set", 0, 0};
@@ -309,6 +311,18 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
   }
 
   if (const ConfigValue* tables = root.find("table")) read_tables(chain, *tables, path);
+
+  // [uncertainty]: "<section>.<key>" = "<distribution>", each parsed now so that a bad one is refused where it is.
+  if (const ConfigValue* tolerances = root.find("uncertainty")) {
+    require_table(*tolerances, "uncertainty");
+    for (const auto& [key, value] : tolerances->members) {
+      if (value.type != ConfigValue::Type::string)
+        throw InputError(value.where, "[uncertainty]", key + " = " + value.as_toml(),
+                         "expected a distribution as a string, e.g. \"normal(0.56, 0.02)\" or \"uniform(9 e-, 11 e-)\"");
+      (void)parse_varied_input(chain, key, value.string_value, value.where, "[uncertainty]");
+      chain.uncertainties.push_back(UncertaintySpec{key, value.string_value, value.where});
+    }
+  }
   return chain;
 }
 

@@ -122,6 +122,14 @@ struct ExpectationOutcome {
   bool passed = false;
 };
 
+// [uncertainty] "optics.transmittance" = "normal(0.56, 0.02)": an input's tolerance, kept with the design
+// (radchain/distribution.hpp parses it; `radchain uncertainty` and `catalogue --uncertainty` sample it).
+struct UncertaintySpec {
+  std::string key;   // "<section>.<parameter>"
+  std::string text;  // "normal(0.56, 0.02)"
+  SourceLocation where;
+};
+
 // One [[table]] as computed: a row per value, a column per result (SI; NaN where that row's solve failed).
 struct TableOutcome {
   TableSpec spec;
@@ -153,6 +161,7 @@ class Chain {
   std::vector<SolveSpec> solves;
   std::vector<Expectation> expected;
   std::vector<TableSpec> tables;
+  std::vector<UncertaintySpec> uncertainties;
   SolverChoice solver = SolverChoice::automatic;
 
   // What changed since the last evaluation: the spectral phase from the first stage with a changed spectral

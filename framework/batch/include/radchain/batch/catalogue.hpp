@@ -4,7 +4,8 @@
 // percent, ok / FAIL. Exit code 0 when every check holds, 1 when one fails, 2 when a file is bad input.
 //
 // Rows per sensor file, in this order: each [expected] check; each solved unknown that no check covers; each
-// result asked for with --results; with --tables, each cell of its [[table]] entries. A file that does not load gives one ERROR row (and its one-line message).
+// result asked for with --results; with --tables, each cell of its [[table]] entries; with --uncertainty N, the
+// 5 % and 95 % points of each solved unknown and checked result under the file's [uncertainty] tolerances. A file that does not load gives one ERROR row (and its one-line message).
 #include "radchain/chain.hpp"
 #include "radchain/batch/table.hpp"
 
@@ -24,6 +25,7 @@ struct CatalogueOptions {
   std::vector<std::string> extra_results;  // --results: more rows per file
   bool no_solve = false;                   // --no-solve: every file forward only, its [[solve]] entries skipped
   bool tables = false;                     // --tables: each file's [[table]] entries too, a row per cell
+  std::size_t uncertainty_samples = 0;     // --uncertainty N: 5 % and 95 % rows from the file's [uncertainty]
   SolverChoice solver = SolverChoice::automatic;  // --solver
   ShardSpec shard;
   std::atomic<std::size_t>* progress = nullptr;  // counts finished files

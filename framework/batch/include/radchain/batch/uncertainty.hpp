@@ -2,12 +2,9 @@
 // `radchain uncertainty`: Monte Carlo propagation of input uncertainties through the chain (its solves re-run at
 // every sample), beside the linear (first-order) propagation from the budget's derivatives.
 //
-// `--vary "optics.transmittance=normal(0.56, 0.02)"`: a distribution in the key's units (the unit written with
-// each number, as --set takes it; plain numbers for dimensionless keys):
-//   normal(mean, sd)          Gaussian
-//   uniform(lo, hi)           flat on [lo, hi]
-//   lognormal(mean, sd)       exp of a Gaussian, given by the mean and standard deviation of the value itself
-//   triangular(lo, mode, hi)  triangular
+// The inputs: the sensor file's [uncertainty] section, and `--vary "optics.transmittance=normal(0.56, 0.02)"`
+// (which replaces the file's distribution of the same key): distributions in the key's units
+// (radchain/distribution.hpp).
 // Sample k's value of input j is the distribution's quantile at u = hash(seed, k, j) (SplitMix64, a counter-based
 // generator): a sample does not depend on which thread ran it or on the samples before it, so the output is the
 // same for any --threads. A sample outside an input's accepted range, or whose evaluation or solve fails, is left
@@ -17,6 +14,7 @@
 // means — exact for a chain that is linear in the inputs over their spread (ISO GUM, JCGM 100:2008 §5.1.2, the law
 // of propagation of uncertainty for uncorrelated inputs).
 #include "radchain/chain.hpp"
+#include "radchain/distribution.hpp"
 #include "radchain/batch/table.hpp"
 
 #include <cstdint>
@@ -25,22 +23,6 @@
 #include <vector>
 
 namespace radchain {
-
-struct Distribution {
-  enum class Kind { normal, uniform, lognormal, triangular };
-  Kind kind = Kind::normal;
-  double a = 0, b = 0, c = 0;  // SI: normal (mean, sd), uniform (lo, hi), lognormal (mean, sd), triangular (lo, mode, hi)
-  double mean() const;
-  double sd() const;
-  double quantile(double u) const;  // u in (0, 1)
-};
-
-struct VariedInput {
-  std::string key;        // "optics.transmittance"
-  std::string as_written; // "normal(0.56, 0.02)"
-  std::string unit;       // SI unit of the key ("1" for a number)
-  Distribution distribution;
-};
 
 // Parses "key=dist(args)" for a numeric, non-spectral, unsolved parameter of `chain`. Throws InputError (one line).
 VariedInput parse_vary(Chain& chain, const std::string& text);
