@@ -1,11 +1,13 @@
 // `radchain mtf`: the Kolobrodov design's MTF curves as CSV (and the exit code of a sensor without them).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -24,6 +26,31 @@ TEST(MtfCli, WritesTheFourCurves) {
                             "1.000000,1.000000\n"),
             std::string::npos);
   std::filesystem::remove(csv);
+}
+
+TEST(MtfCli, WritesTheBudgetOfAnEarthObservationCamera) {
+  // WorldView-2 pan (geometry only, giqe criterion): every component and the system; the comment names Nyquist
+  // 1/(2 × 8 µm) = 62.5 mm⁻¹, and its row is diffraction (Goodman, x = λNν) × pixel 2/π.
+  const auto csv = std::filesystem::temp_directory_path() / "radchain_mtf_budget_test.csv";
+  ASSERT_EQ(run_cli("mtf " RADCHAIN_SOURCE_DIR "/sensors/worldview-2-pan.toml --out " + csv.string()), 0);
+  std::ifstream in(csv);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::filesystem::remove(csv);
+  EXPECT_NE(text.str().find("frequency_mm-1,diffraction,pixel,jitter,smear,diffusion,wavefront,tdi,system\n0,1.000000,"),
+            std::string::npos);
+  EXPECT_NE(text.str().find("# Nyquist 1/(2p) = 62.5 mm-1: system MTF"), std::string::npos);
+  const auto row = text.str().find("\n62.5,");
+  ASSERT_NE(row, std::string::npos);
+  const double x = 625e-9 * (13.3 / 1.1) * 62.5e3, pi = 3.14159265358979323846;
+  const double diffraction = 2 / pi * (std::acos(x) - x * std::sqrt(1 - x * x));
+  std::stringstream fields(text.str().substr(row + 1, text.str().find('\n', row + 1) - row - 1));
+  std::vector<double> v;
+  for (std::string field; std::getline(fields, field, ',');) v.push_back(std::stod(field));
+  ASSERT_EQ(v.size(), 9u);
+  EXPECT_NEAR(v[1], diffraction, 1e-6);
+  EXPECT_NEAR(v[2], 2 / pi, 1e-6);
+  EXPECT_NEAR(v[8], diffraction * 2 / pi, 2e-6);
 }
 
 TEST(MtfCli, ASensorWithoutADesignIsBadInput) {
