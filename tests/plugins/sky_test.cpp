@@ -33,19 +33,23 @@ std::string read(const std::string& path) {
   return s.str();
 }
 
-// sensors/rubin-lsst-r-m5.toml with its `sky_brightness = 21.2 ...` line replaced by `sky` and more lines appended.
-Report run_rubin_r(const std::string& name, const std::string& sky, const std::string& extra = "") {
-  std::string text = read(sensors + "rubin-lsst-r-m5.toml");
-  const auto at = text.find("sky_brightness = 21.2");
-  const auto end = text.find('\n', at);
-  text.replace(at, end - at, sky);
-  text += extra;
+// Runs a sensor file's text (without its [[solve]] entries when `solve` is false).
+Report run_text(const std::string& name, const std::string& text, bool solve = true) {
   const auto path = std::filesystem::temp_directory_path() / ("radchain_sky_" + std::to_string(::getpid()) + "_" + name + ".toml");
   std::ofstream(path) << text;
   Chain chain = load_sensor(path.string());
+  if (!solve) chain.solves.clear();
   Report r = chain.run();
   std::filesystem::remove(path);
   return r;
+}
+
+// sensors/rubin-lsst-r-m5.toml with its `sky_brightness = 21.2 ...` line replaced by `sky`.
+Report run_rubin_r(const std::string& name, const std::string& sky) {
+  std::string text = read(sensors + "rubin-lsst-r-m5.toml");
+  const auto at = text.find("sky_brightness = 21.2");
+  text.replace(at, text.find('\n', at) - at, sky);
+  return run_text(name, text);
 }
 
 // ∫ a(λ) b(λ) w(λ) dλ by the trapezoid rule on a's grid (b interpolated), over a's whole table.
@@ -108,13 +112,7 @@ TEST(SkyTable, SkyPassesTheOpticsTransmittanceCurve) {
     text.replace(table, text.find("seeing") - table, "extinction = 0\n");
     const std::string key = "transmittance = 1 ";
     if (curve) text.insert(text.find(key), "transmittance_curve = \"sdss_r_doi2010.csv\"\n");
-    const auto path = std::filesystem::temp_directory_path() / ("radchain_sky_" + std::to_string(::getpid()) + "_" + name + ".toml");
-    std::ofstream(path) << text;
-    Chain chain = load_sensor(path.string());
-    chain.solves.clear();  // at the file's start magnitude: signal and sky as they are
-    Report r = chain.run();
-    std::filesystem::remove(path);
-    return r;
+    return run_text(name, text, false);  // at the file's start magnitude: signal and sky as they are
   };
   const Report plain = with_curve("plain", false), filtered = with_curve("curve", true);
   const Spectrum hw = load_spectrum_csv(spectra + "lsst_hardware_r_throughputs1.9.csv", "1").spectrum;
@@ -188,15 +186,6 @@ adc_bits = 16
 pixel_pitch = "5 um"
 integration_time = "10 s"
 )";
-}
-
-Report run_text(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("radchain_sky_" + std::to_string(::getpid()) + "_" + name + ".toml");
-  std::ofstream(path) << text;
-  Chain chain = load_sensor(path.string());
-  Report r = chain.run();
-  std::filesystem::remove(path);
-  return r;
 }
 
 // The background electrons by étendue, by hand: L_λ = L_500 E⊙(λ)/E⊙(500 nm), one pixel of p² behind f/3.33
