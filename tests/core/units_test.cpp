@@ -123,6 +123,16 @@ TEST(Units, UnparsableUnitIsAnInvalidArgument) {
   EXPECT_TRUE(units::parses("W m-2 nm-1"));
 }
 
+// Issue 18 (found by tests/fuzz/overrides_fuzz): a zero factor followed by a name made udunits2 leak that name
+// (LeakSanitizer in the ASan build reports it at exit). Refused like any unparsable unit; the units after it parse.
+TEST(Units, ZeroFactorIsRefusedWithoutLeak) {
+  for (const char* unit : {"m 0A", "m/0A", "m*0.0A", "pt 0Aics.apertc", "A 0e0A"})
+    EXPECT_THROW(units::conversion(unit, "m"), std::invalid_argument) << unit;
+  EXPECT_DOUBLE_EQ(units::conversion("cm", "m").factor, 0.01);
+  EXPECT_DOUBLE_EQ(units::conversion("10 cm", "m").factor, 0.1);
+  EXPECT_DOUBLE_EQ(units::conversion("0.5 m", "m").factor, 0.5);
+}
+
 TEST(Units, DimensionNames) {
   EXPECT_EQ(units::dimension_name("m"), "a length");
   EXPECT_EQ(units::dimension_name("electron"), "an electron count");

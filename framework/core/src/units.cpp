@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -78,8 +79,22 @@ struct UnitDeleter {
 };
 using UnitPtr = std::unique_ptr<ut_unit, UnitDeleter>;
 
+// A factor of zero ("m 0A", "W/0.0sr") is never a unit, and udunits2 (2.2.28) leaks the name that follows it
+// when it refuses one (its parser drops the lexer's copy; found by tests/fuzz/overrides_fuzz). Refused here first.
+bool has_zero_factor(const std::string& unit) {
+  for (std::size_t i = 0; i < unit.size(); ++i) {
+    const bool starts = i == 0 || std::isspace(static_cast<unsigned char>(unit[i - 1])) || std::strchr("*/(", unit[i - 1]);
+    if (!starts || !(std::isdigit(static_cast<unsigned char>(unit[i])) || unit[i] == '.')) continue;
+    char* end = nullptr;
+    const double factor = std::strtod(unit.c_str() + i, &end);
+    if (end != unit.c_str() + i && factor == 0) return true;
+  }
+  return false;
+}
+
 UnitPtr parse_locked(const std::string& text) {
   const std::string prepared = preprocess(text);
+  if (has_zero_factor(prepared)) throw std::invalid_argument("unknown unit \"" + text + "\"");
   ut_unit* unit = ut_parse(registry().system, prepared.c_str(), UT_UTF8);
   if (!unit) throw std::invalid_argument("unknown unit \"" + text + "\"");
   return UnitPtr(unit);
