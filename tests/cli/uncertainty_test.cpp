@@ -195,10 +195,12 @@ TEST(UncertaintySection, CatalogueShowsTheFivetoNinetyFivePercentBand) {
   const CliResult mc = run_cli(scratch, "uncertainty '" + tolerances_file + "' --results target.magnitude --samples 400 --format json");
   ASSERT_EQ(mc.exit_code, 0) << mc.err;
   double mc_p5 = NAN, mc_p95 = NAN;
-  for (const auto& row : nlohmann::json::parse(mc.out)["rows"]) {
-    if (row["input"] != "") continue;
-    if (row["statistic"] == "p5") mc_p5 = row["value"].get<double>();
-    if (row["statistic"] == "p95") mc_p95 = row["value"].get<double>();
+  const auto mc_json = nlohmann::json::parse(mc.out);  // kept: a range-for over parse(...)["rows"] would dangle
+  for (const auto& row : mc_json["rows"]) {
+    if (!row["input"].get<std::string>().empty()) continue;
+    const std::string statistic = row["statistic"];
+    if (statistic == "p5") mc_p5 = row["value"].get<double>();
+    if (statistic == "p95") mc_p95 = row["value"].get<double>();
   }
   EXPECT_NEAR(p5, mc_p5, 1e-4);  // the catalogue prints 6 significant digits
   EXPECT_NEAR(p95, mc_p95, 1e-4);
