@@ -339,7 +339,8 @@ static void read_tables(Chain& chain, const ConfigValue& tables, const std::stri
     // The values' unit is the varied parameter's: find it first, then validate the entry against its schema.
     const ConfigValue* vary = entry.find("vary");
     if (!vary || vary->type != ConfigValue::Type::string) {
-      const ParamSpec& spec_of_vary = table_entry_schema()[1];
+      const Schema entry_schema = table_entry_schema();  // kept: a reference into the temporary would dangle
+      const ParamSpec& spec_of_vary = entry_schema[1];
       throw InputError(vary ? vary->where : entry.where, "[[table]]", vary ? "vary = " + vary->as_toml() : "vary",
                        fmt::format("{}{} ({})", vary ? "" : "missing required key: ", spec_of_vary.expected_text(), spec_of_vary.doc));
     }
