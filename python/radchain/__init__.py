@@ -136,6 +136,21 @@ class Result(_Mapping):
     def json(self) -> str:
         return self._report.json()
 
+    def tables(self) -> list:
+        """The file's [[table]] entries (e.g. limiting magnitude vs exposure), one pandas DataFrame each: the varied
+        parameter and a column per result, all in SI (NaN in a row whose solve failed). attrs: name, vary, the values
+        as written, the results' SI units and each row's note (why a solve failed, else "")."""
+        pd = _pandas()
+        frames = []
+        for t in _json.loads(self.json())["tables"]:
+            names = [c["name"] for c in t["columns"]]
+            df = pd.DataFrame({t["vary"]: t["values_si"],
+                               **{n: [_np.nan if row[i] is None else row[i] for row in t["rows_si"]] for i, n in enumerate(names)}})
+            df.attrs.update(name=t["name"], vary=t["vary"], values=t["values"],
+                            units={c["name"]: c["si_unit"] for c in t["columns"]}, notes=t["notes"])
+            frames.append(df)
+        return frames
+
     def text(self) -> str:
         return self._report.text()
 

@@ -124,3 +124,17 @@ def test_all_bundled_sensors_match_cli(cli, source_dir):
     assert len(files) >= 5
     for f in files:
         assert radchain.load(str(f)).run().json() == cli("run", f, "--format", "json").stdout, f.name
+
+
+def test_tables_equal_runs_at_each_value(source_dir):
+    """Result.tables(): Rubin r's m5-vs-exposure [[table]] as a DataFrame, each row equal to a run at that exposure."""
+    rubin = str(source_dir / "sensors" / "rubin-lsst-r-m5.toml")
+    (table,) = radchain.load(rubin).run().tables()
+    assert table.attrs["vary"] == "detector.integration_time"
+    assert table.attrs["values"][2] == "30 s"
+    assert table.attrs["units"]["detector.background_electrons"] == "electron"
+    assert list(table["detector.integration_time"]) == [5.0, 15.0, 30.0, 60.0, 150.0, 300.0]
+    for t, m5 in zip(table["detector.integration_time"], table["target.magnitude"]):
+        alone = radchain.load(rubin, set={"detector.integration_time": f"{t} s"}).run()
+        assert m5 == pytest.approx(alone["target.magnitude"], abs=1e-9)
+    assert radchain.load(str(source_dir / "sensors" / "msx-sbv.toml")).run().tables() == []
