@@ -15,6 +15,7 @@
 #include "radchain/plugin.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace {
 using namespace radchain;
@@ -84,8 +85,23 @@ class CcdLine final : public Stage {
     const physics::WavelengthRange whole = physics::support(response), band{lo, hi};
     const Spectrum lamp = physics::blackbody_exitance_spectrum(params_.get("reference_temperature"),
                                                                c2_of(params_.text("reference_c2")));
-    k_reference_computed_ = physics::utilisation_coefficient(lamp, response, whole, physics::support(lamp));
-    k_working_computed_ = physics::utilisation_coefficient(signal.spectrum, response, band, band);
+    // A spectrum that radiates nothing where it is integrated is bad input (a lamp of a few kelvin), not a fault.
+    // A spectrum that radiates nothing where it is integrated (a lamp of a few kelvin) is bad input, not a fault
+    // and not a silent k = 0 (an infinite SNR).
+    auto coefficient = [&](const Spectrum& source, const physics::WavelengthRange& response_range,
+                           const physics::WavelengthRange& source_range, const char* key, const char* what) {
+      std::string why = "k = 0";
+      try {
+        const double k = physics::utilisation_coefficient(source, response, response_range, source_range);
+        if (k > 0) return k;
+      } catch (const std::invalid_argument& error) {
+        why = error.what();
+      }
+      params_.reject(key, std::string(what) + " (" + why + ")");
+    };
+    k_reference_computed_ = coefficient(lamp, whole, physics::support(lamp), "reference_temperature",
+                                        "the calibration lamp gives no radiation the detector responds to; a tungsten lamp is near 2854 K");
+    k_working_computed_ = coefficient(signal.spectrum, band, band, "band_min", "the scene gives no radiation the detector responds to in its band");
     k_reference_ = params_.has("utilisation_reference") ? params_.get("utilisation_reference") : k_reference_computed_;
     k_working_ = params_.has("utilisation_working") ? params_.get("utilisation_working") : k_working_computed_;
 

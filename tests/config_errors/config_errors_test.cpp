@@ -66,6 +66,7 @@ const Case cases[] = {
     {"uncertainty_negative_sd"},
     {"uncertainty_wrong_unit"},
     {"uncertainty_not_a_string"},
+    {"lamp_too_cold"},
     {"solve_unknown_parameter"},
     {"expected_unknown_result"},
     {"expected_wrong_unit"},
