@@ -135,6 +135,7 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->required();
   uncertainty_cmd->add_option("--samples", uncertainty.samples, "Monte Carlo samples (default 1000)");
+  uncertainty_cmd->add_option("--plot", uncertainty.plot, "draw each result's histogram with its 5/50/95 % points to this PNG (gnuplot)");
   cli::add_seed(uncertainty_cmd, uncertainty.seed);
   uncertainty_cmd->add_option("--threads", uncertainty.threads, "threads to use (default: all cores; same output for any count)");
   cli::add_output(uncertainty_cmd, uncertainty.output, "text (default), csv or json");

@@ -86,6 +86,7 @@ struct UncertaintyCommand {
   std::size_t samples = 1000;        // --samples
   std::uint64_t seed = 1;            // --seed
   std::size_t threads = 0;           // --threads (0 = all cores; the output does not depend on it)
+  std::string plot;                  // --plot: histograms of the results to this PNG
   Output output;
 };
 int uncertainty(const UncertaintyCommand& options);  // commands/uncertainty.cpp

@@ -83,6 +83,30 @@ unset multiplot
 set output
 )gp";
 
+// Histograms (radchain uncertainty --plot): fixed text. ARG1 output PNG, ARG2 data file (one block per panel,
+// separated by two blank lines: bin centre TAB count TAB bin width), ARG3 title, ARG4 the x labels separated by
+// \037. The terminal, the panel count and three marks per panel are written before it by plot_histograms.
+constexpr const char* histogram_script = R"gp(set output ARG1
+set datafile separator "\t"
+set style fill solid 0.5 border -1
+set grid y
+set key off
+set ylabel "samples"
+set multiplot layout panels, 1 title ARG3
+labels = ARG4
+do for [i = 1:panels] {
+  cut = strstrt(labels, "\037")
+  xlab = (cut > 0) ? labels[1:cut - 1] : labels
+  labels = (cut > 0) ? labels[cut + 1:*] : ""
+  set xlabel xlab
+  do for [m = 1:3] { set arrow m from marks[3 * (i - 1) + m], graph 0 to marks[3 * (i - 1) + m], graph 1 nohead dt 2 lw 1.5 }
+  plot ARG2 index (i - 1) using 1:2:3 with boxes
+  unset arrow
+}
+unset multiplot
+set output
+)gp";
+
 // Text for gnuplot's arguments: control characters (a newline above all) become spaces.
 std::string plain_text(std::string text) {
   for (char& c : text)
@@ -235,6 +259,37 @@ void plot_tornado(const std::string& png_path, const std::string& title, const s
         return head;
       },
       tornado_script, {plain_text(title), x_labels});
+}
+
+void plot_histograms(const std::string& png_path, const std::string& title, const std::vector<HistogramPanel>& panels) {
+  if (panels.empty()) throw std::runtime_error("nothing to plot");
+  std::string x_labels;
+  for (std::size_t k = 0; k < panels.size(); ++k) {
+    if (k) x_labels += label_separator;
+    x_labels += plain_text(label(panels[k].label, panels[k].unit));
+  }
+  draw(
+      png_path,
+      [&](std::ostream& out) {
+        for (std::size_t k = 0; k < panels.size(); ++k) {
+          if (k) out << "\n\n";
+          const auto& p = panels[k];
+          for (std::size_t b = 0; b < p.counts.size(); ++b)
+            out << fmt::format("{:.17g}\t{}\t{:.17g}\n", 0.5 * (p.edges[b] + p.edges[b + 1]), p.counts[b], p.edges[b + 1] - p.edges[b]);
+          if (p.counts.empty()) out << "0\t0\t1\n";
+        }
+      },
+      [&](const std::string& terminal) {
+        std::string head = fmt::format("set terminal {} noenhanced size 900,{}\n", terminal, panels.size() * 320 + 60);
+        head += fmt::format("panels = {}\narray marks[{}]\n", panels.size(), 3 * panels.size());
+        for (std::size_t i = 0; i < panels.size(); ++i)
+          for (std::size_t m = 0; m < 3; ++m) {
+            const double v = m < panels[i].marks.size() && std::isfinite(panels[i].marks[m]) ? panels[i].marks[m] : 0.0;
+            head += fmt::format("marks[{}] = {:.17g}\n", 3 * i + m + 1, v);
+          }
+        return head;
+      },
+      histogram_script, {plain_text(title), x_labels});
 }
 
 }  // namespace radchain::cli

@@ -23,4 +23,13 @@ struct TornadoPanel {
 };
 void plot_tornado(const std::string& png_path, const std::string& title, const std::vector<TornadoPanel>& panels);
 
+// Histograms, one panel per result (radchain uncertainty --plot), with dashed lines at `marks` (5/50/95 %).
+struct HistogramPanel {
+  std::string label, unit;
+  std::vector<double> edges;          // bins + 1, display unit
+  std::vector<std::size_t> counts;
+  std::vector<double> marks;          // display unit
+};
+void plot_histograms(const std::string& png_path, const std::string& title, const std::vector<HistogramPanel>& panels);
+
 }  // namespace radchain::cli

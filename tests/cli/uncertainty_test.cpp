@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -204,6 +205,52 @@ TEST(UncertaintySection, CatalogueShowsTheFivetoNinetyFivePercentBand) {
   }
   EXPECT_NEAR(p5, mc_p5, 1e-4);  // the catalogue prints 6 significant digits
   EXPECT_NEAR(p95, mc_p95, 1e-4);
+}
+
+}  // namespace
+
+namespace {
+using namespace radchain;
+using namespace radchain::test;
+
+// The square-root choice: ⌈√n⌉ bins (5..60) over [min, max], every value counted once, the maximum in the last
+// bin; a uniform distribution's bins hold n/bins each within 5 standard deviations of the binomial count.
+TEST(UncertaintyHistogram, BinsCountEverySampleOnce) {
+  std::vector<double> values;
+  const Distribution uniform{Distribution::Kind::uniform, 2, 5, 0};
+  for (std::uint64_t k = 0; k < 3600; ++k) values.push_back(uniform.quantile(sample_uniform(7, k, 0)));
+  const Histogram h = histogram_of(values);
+  ASSERT_EQ(h.counts.size(), 60u);
+  ASSERT_EQ(h.edges.size(), 61u);
+  EXPECT_DOUBLE_EQ(h.edges.front(), *std::min_element(values.begin(), values.end()));
+  EXPECT_NEAR(h.edges.back(), *std::max_element(values.begin(), values.end()), 1e-12);
+  std::size_t total = 0;
+  for (const std::size_t c : h.counts) {
+    total += c;
+    EXPECT_NEAR(static_cast<double>(c), 60.0, 5 * std::sqrt(60.0 * (1 - 1.0 / 60)));
+  }
+  EXPECT_EQ(total, values.size());
+  const Histogram one_value = histogram_of({1.0, 1.0, 1.0});  // a 1e-9 wide range, everything in the first bin
+  EXPECT_EQ(one_value.counts.size(), 5u);
+  EXPECT_EQ(one_value.counts.front(), 3u);
+}
+
+// --plot draws a PNG (gnuplot) and writes the same table as without it; a PNG that cannot be written is one
+// located line, exit 2, and no table on stdout.
+TEST(UncertaintyCli, PlotDrawsTheHistograms) {
+  Scratch scratch;
+  const std::string base = "uncertainty '" + source_dir + "/examples/sbv-tolerances.toml' --results target.magnitude,detector.snr --samples 300";
+  const CliResult plain = run_cli(scratch, base);
+  const CliResult plotted = run_cli(scratch, base + " --plot '" + (scratch / "hist.png").string() + "'");
+  ASSERT_EQ(plotted.exit_code, 0) << plotted.err;
+  EXPECT_EQ(plotted.out, plain.out);
+  const std::string png = read_text(scratch / "hist.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  const CliResult bad = run_cli(scratch, base + " --plot '" + (scratch / "no-such-dir" / "h.png").string() + "'");
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_EQ(count_lines(bad.err), 1u) << bad.err;
+  EXPECT_TRUE(bad.out.empty()) << bad.out;
 }
 
 }  // namespace

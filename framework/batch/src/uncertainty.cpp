@@ -209,6 +209,7 @@ Uncertainty run_uncertainty(const UncertaintyOptions& options) {
     }
     std::vector<double> y;
     for (std::size_t k : used) y.push_back(outputs[k * nr + r]);
+    s.values = y;
     double sum = 0;
     for (double v : y) sum += v;
     s.mean = sum / m;
@@ -232,6 +233,18 @@ Uncertainty run_uncertainty(const UncertaintyOptions& options) {
     s.p5 = percentile(0.05), s.p50 = percentile(0.50), s.p95 = percentile(0.95);
   }
   return u;
+}
+
+Histogram histogram_of(const std::vector<double>& values) {
+  Histogram h;
+  if (values.empty()) return h;
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  const std::size_t bins = std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(values.size())))), 5, 60);
+  const double low = *lo, width = (*hi > *lo ? *hi - *lo : std::max(std::abs(*lo), 1.0) * 1e-9) / static_cast<double>(bins);
+  for (std::size_t k = 0; k <= bins; ++k) h.edges.push_back(low + width * static_cast<double>(k));
+  h.counts.assign(bins, 0);
+  for (const double v : values) ++h.counts[std::min(bins - 1, static_cast<std::size_t>((v - low) / width))];
+  return h;
 }
 
 std::string format_uncertainty_text(const Uncertainty& u) {

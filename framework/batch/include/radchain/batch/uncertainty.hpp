@@ -49,7 +49,17 @@ struct ResultStatistics {
   std::vector<double> correlation;   // Pearson, per varied input
   std::vector<double> derivative;    // ∂r/∂x_j at the means (SI)
   std::vector<double> linear_part;   // |∂r/∂x_j| σ_j
+  std::vector<double> values;        // the used samples' values (SI), in sample order
 };
+
+// Equal-width bins over [min, max] of `values`: bins = ⌈√n⌉ clamped to [5, 60] (the square-root choice), edges[k],
+// edges[k+1] bound counts[k]; the maximum falls in the last bin (all
+// values equal: a range of 1e-9 relative, everything in the first bin).
+struct Histogram {
+  std::vector<double> edges;
+  std::vector<std::size_t> counts;
+};
+Histogram histogram_of(const std::vector<double>& values);
 
 struct Uncertainty {
   std::string sensor_file, sensor_name;
