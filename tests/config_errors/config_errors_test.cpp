@@ -67,6 +67,7 @@ const Case cases[] = {
     {"uncertainty_wrong_unit"},
     {"uncertainty_not_a_string"},
     {"lamp_too_cold"},
+    {"solve_bracket_out_of_range"},
     {"solve_unknown_parameter"},
     {"expected_unknown_result"},
     {"expected_wrong_unit"},

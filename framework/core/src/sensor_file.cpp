@@ -240,7 +240,15 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
       spec.lo = pspec.min, spec.hi = pspec.max;
       if (pspec.min_exclusive) spec.lo = std::nextafter(pspec.min, pspec.max);
       if (pspec.max_exclusive) spec.hi = std::nextafter(pspec.max, pspec.min);
-      if (params.has("bracket")) spec.lo = params.entry("bracket").numbers[0], spec.hi = params.entry("bracket").numbers[1];
+      if (params.has("bracket")) {
+        const Params::Entry& bracket = params.entry("bracket");
+        spec.lo = bracket.numbers[0], spec.hi = bracket.numbers[1];
+        // The solver evaluates the chain at both ends: each must be a value the parameter accepts (f' = 0 is not).
+        for (const double end : bracket.numbers)
+          if (!pspec.in_range(end))
+            throw InputError(bracket.where, "[[solve]]", "bracket = " + bracket.as_written,
+                             fmt::format("an end is out of range for {}: accepted {}", spec.unknown, pspec.range_text()));
+      }
       if (!std::isfinite(spec.lo) || !std::isfinite(spec.hi) || !(spec.hi > spec.lo))
         throw InputError(entry.where, "[[solve]]", spec.unknown,
                          "needs a bracket = [low, high] with low < high (the parameter's range is open): e.g. bracket = [\"1 cm\", \"2 m\"]");
