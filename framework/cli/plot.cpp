@@ -118,6 +118,17 @@ std::string label(const std::string& name, const std::string& unit) {
   return unit.empty() || unit == "1" ? name : name + " [" + unit + "]";
 }
 
+// The panels' axis labels as one gnuplot argument (see the trust note at the top), each made plain text.
+template <class Panel, class Text>
+std::string joined_labels(const std::vector<Panel>& panels, Text text_of) {
+  std::string joined;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    if (i) joined += label_separator;
+    joined += plain_text(text_of(panels[i]));
+  }
+  return joined;
+}
+
 // A series that is constant up to rounding (an SNR held at the threshold by a solve) would be drawn as
 // noise over a range of 1e-14: give it a range of ±0.1 % around its mean instead. Returns {fixed, low, high}.
 struct YRange {
@@ -206,11 +217,7 @@ void draw(const std::string& png_path, const std::function<void(std::ostream&)>&
 void plot_sweep(const std::string& png_path, const std::string& title, const std::string& x_label,
                 const std::vector<double>& x, const std::vector<PlotSeries>& series) {
   if (series.empty()) throw std::runtime_error("nothing to plot");
-  std::string y_labels;
-  for (std::size_t i = 0; i < series.size(); ++i) {
-    if (i) y_labels += label_separator;
-    y_labels += plain_text(label(series[i].label, series[i].unit));
-  }
+  const std::string y_labels = joined_labels(series, [](const PlotSeries& s) { return label(s.label, s.unit); });
   draw(
       png_path,
       [&](std::ostream& out) {
@@ -235,11 +242,7 @@ void plot_sweep(const std::string& png_path, const std::string& title, const std
 
 void plot_tornado(const std::string& png_path, const std::string& title, const std::vector<TornadoPanel>& panels) {
   if (panels.empty()) throw std::runtime_error("nothing to plot");
-  std::string x_labels;
-  for (std::size_t k = 0; k < panels.size(); ++k) {
-    if (k) x_labels += label_separator;
-    x_labels += plain_text(panels[k].x_label);
-  }
+  const std::string x_labels = joined_labels(panels, [](const TornadoPanel& p) { return p.x_label; });
   draw(
       png_path,
       [&](std::ostream& out) {
@@ -263,11 +266,7 @@ void plot_tornado(const std::string& png_path, const std::string& title, const s
 
 void plot_histograms(const std::string& png_path, const std::string& title, const std::vector<HistogramPanel>& panels) {
   if (panels.empty()) throw std::runtime_error("nothing to plot");
-  std::string x_labels;
-  for (std::size_t k = 0; k < panels.size(); ++k) {
-    if (k) x_labels += label_separator;
-    x_labels += plain_text(label(panels[k].label, panels[k].unit));
-  }
+  const std::string x_labels = joined_labels(panels, [](const HistogramPanel& p) { return label(p.label, p.unit); });
   draw(
       png_path,
       [&](std::ostream& out) {
