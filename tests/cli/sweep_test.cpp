@@ -195,6 +195,20 @@ TEST(SweepCli, FailedSolveExitsWith1AndLeavesNan) {
   EXPECT_NE(r.err.find("at optics.aperture = 0.01 mm: the solve for target.magnitude failed"), std::string::npos) << r.err;
 }
 
+// A point the chain refuses (a look past the horizon, in the lanes or the scalar path) stops the sweep: one line
+// naming the point and the stage, exit 2, no --out file.
+TEST(SweepCli, PointPastTheHorizonIsOneLineAndExit2) {
+  Scratch scratch;
+  const std::string wv2 = source_dir + "/sensors/worldview-2-pan-20deg.toml";
+  const std::string out = (scratch / "roll.csv").string();
+  const CliResult r = run_cli(scratch, "sweep '" + wv2 + "' --set 'platform.roll=0 deg:80 deg:5' --out '" + out + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("at platform.roll = 80 deg, platform (plugin \"earth_orbit\"): a line of sight 80 deg off nadir "
+                       "misses the Earth"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(SweepCli, PlotIsAPng) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot is not installed";
   Scratch scratch;

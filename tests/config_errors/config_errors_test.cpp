@@ -82,6 +82,7 @@ const Case cases[] = {
     {"set_bad_key", "", "--set 'optics.apperture=\"20 cm\"'"},
     {"set_unknown_section", "", "--set 'optic.aperture=\"20 cm\"'"},
     {"look_past_horizon"},
+    {"swath_past_horizon"},
     {"reflectance_above_one"},
     {"band_outside_sed"},
     {"band_outside_qe_curve"},

@@ -285,13 +285,23 @@ int Sweep::run(TableWriter& writer, std::string* failure,
 
 // --- SweepWorker -------------------------------------------------------------------------------------------
 
-// "at optics.aperture = 20 cm: the solve for target.magnitude failed: <why>" (axis values as written in the row).
-static std::string solve_failure(const std::vector<SweepAxis>& axes, const double* row, const std::string& unknown,
-                                 const std::string& why) {
+// "optics.aperture = 20 cm, target.magnitude = 15" (axis values as written in the row).
+static std::string point_text(const std::vector<SweepAxis>& axes, const double* row) {
   std::string at;
   for (std::size_t a = 0; a < axes.size(); ++a)
     at += fmt::format("{}{} = {:g}{}", a ? ", " : "", axes[a].key, row[a], axes[a].unit.empty() ? "" : " " + axes[a].unit);
-  return fmt::format("at {}: the solve for {} failed: {}", at, unknown, why);
+  return at;
+}
+
+// "at optics.aperture = 20 cm: the solve for target.magnitude failed: <why>".
+static std::string solve_failure(const std::vector<SweepAxis>& axes, const double* row, const std::string& unknown,
+                                 const std::string& why) {
+  return fmt::format("at {}: the solve for {} failed: {}", point_text(axes, row), unknown, why);
+}
+
+// A point the chain refuses (a look past the horizon): the whole sweep stops with the point named, exit 2.
+static InputError at_point(const InputError& error, const std::vector<SweepAxis>& axes, const double* row) {
+  return error.with_context(fmt::format("at {}, {}", point_text(axes, row), error.context()));
 }
 
 SweepWorker::SweepWorker(const Sweep& sweep)
@@ -339,10 +349,16 @@ void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, d
   chain_.clear_lanes();
   for (std::size_t a = 0; a < axes.size(); ++a) chain_.set_lanes(axes_[a], values[a]);
   std::fill(ok, ok + count, 1);
-  if (chain_.solves.empty()) {
-    chain_.evaluate_lanes(Detail::full);
-  } else {
-    chain_.solve_lanes(lane_outcome_);
+  try {
+    if (chain_.solves.empty()) chain_.evaluate_lanes(Detail::full);
+    else chain_.solve_lanes(lane_outcome_);
+  } catch (const InputError&) {
+    // Which of the lanes' points: one at a time through the scalar path, which names it.
+    chain_.clear_lanes();
+    for (std::size_t k = 0; k < count; ++k) evaluate(points[k], out + k * n_columns);
+    throw;  // not reached unless the lanes and the scalar path disagree
+  }
+  if (!chain_.solves.empty()) {
     for (std::size_t k = 0; k < count; ++k) {
       failures_[k].clear();
       if (lane_outcome_.converged[k]) continue;
@@ -376,9 +392,17 @@ bool SweepWorker::evaluate(std::size_t point, double* out) {
     if (parameter.value() != initial) chain_.set(parameter, initial);
   bool converged = true;
   if (chain_.solves.empty()) {
-    chain_.evaluate();
+    try {
+      chain_.evaluate();
+    } catch (const InputError& error) {
+      throw at_point(error, axes, out);
+    }
   } else {
-    chain_.solve_all(outcomes_);
+    try {
+      chain_.solve_all(outcomes_);
+    } catch (const InputError& error) {
+      throw at_point(error, axes, out);
+    }
     for (const auto& o : outcomes_) {
       if (o.converged) continue;
       if (converged) {

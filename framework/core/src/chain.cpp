@@ -27,6 +27,23 @@ std::optional<double> Report::value(const std::string& name) const {
   return std::nullopt;
 }
 
+namespace {
+// A physics function's domain error while a stage runs — a line of sight past the horizon, a focal length a
+// sweep or a solve took to zero — is bad input, not an internal error: one line naming the stage (exit 2).
+// Plugins keep throwing std::domain_error / std::invalid_argument from physics/ (no InputError there: physics
+// knows no sections); anything else a stage throws stays an internal error.
+template <class Run>
+void run_stage(const StageSlot& slot, const std::string& sensor_file, Run&& run) {
+  try {
+    run();
+  } catch (const std::domain_error& error) {
+    throw InputError(SourceLocation{sensor_file}, slot.params ? slot.params->context() : slot.section, "", error.what());
+  } catch (const std::invalid_argument& error) {
+    throw InputError(SourceLocation{sensor_file}, slot.params ? slot.params->context() : slot.section, "", error.what());
+  }
+}
+}  // namespace
+
 void Chain::invalidate_spectra() {
   spectral_from_ = 0;
   scalar_from_ = 0;
@@ -39,7 +56,7 @@ void Chain::prepare_from(std::size_t first) {
     StageSlot& slot = stages[k];
     light_before_[k] = light_;
     Context context(results_, light_, slot.section, slot.plugin, Detail::full, &slot.declarations, &slot.lookups);
-    slot.stage->prepare(context);
+    run_stage(slot, sensor_file, [&] { slot.stage->prepare(context); });
   }
   spectral_from_ = stages.size();
 }
@@ -55,7 +72,7 @@ void Chain::evaluate_from(std::size_t first, Detail detail) {
     scales_before_[k] = Scales{light_.illumination_scale, light_.signal.scale, light_.background.scale, light_.up_path_scale};
     StageSlot& slot = stages[k];
     Context context(results_, light_, slot.section, slot.plugin, detail);
-    slot.stage->evaluate(context);
+    run_stage(slot, sensor_file, [&] { slot.stage->evaluate(context); });
   }
   for (const ResolvedSolve& r : resolved_)
     if (r.echo != SIZE_MAX) results_.set(r.echo, r.unknown.value());
@@ -93,7 +110,9 @@ void Chain::evaluate_lanes(Detail detail) {
   }
   for (std::size_t k = first; k < stages.size(); ++k) {
     LaneContext context(lane_results_, light_, lane_scales_, lane_parameters_, detail == Detail::full);
-    if (!stages[k].stage->evaluate_lanes(context)) evaluate_lane_by_lane(stages[k], detail);
+    bool by_lanes = false;
+    run_stage(stages[k], sensor_file, [&] { by_lanes = stages[k].stage->evaluate_lanes(context); });
+    if (!by_lanes) evaluate_lane_by_lane(stages[k], detail);
   }
   for (const ResolvedSolve& r : resolved_)
     if (r.echo != SIZE_MAX) {
@@ -110,24 +129,34 @@ void Chain::evaluate_lane_by_lane(StageSlot& slot, Detail detail) {
   const Light saved_light = light_;
   std::vector<double> saved_parameters;
   for (const LaneSlot& s : lane_slots_) saved_parameters.push_back(*s.address);
-  for (int lane = 0; lane < lane_count; ++lane) {
-    for (std::size_t i = 0; i < lane_slots_.size(); ++i) *lane_slots_[i].address = lane_parameters_[i].values(lane);
-    for (std::size_t id = 0; id < results_.size(); ++id) results_.set(id, lane_results_[id](lane));
-    light_.illumination_scale = lane_scales_.illumination(lane);
-    light_.signal.scale = lane_scales_.signal(lane);
-    light_.background.scale = lane_scales_.background(lane);
-    light_.up_path_scale = lane_scales_.up_path(lane);
-    Context context(results_, light_, slot.section, slot.plugin, detail);
-    slot.stage->evaluate(context);
-    for (ResultId id : slot.declarations) lane_results_[id](lane) = results_.value(id);
-    lane_scales_.illumination(lane) = light_.illumination_scale;
-    lane_scales_.signal(lane) = light_.signal.scale;
-    lane_scales_.background(lane) = light_.background.scale;
-    lane_scales_.up_path(lane) = light_.up_path_scale;
+  // Put back on every way out: a caller that catches an InputError (Python, a sweep naming the point) keeps
+  // a valid scalar phase.
+  auto restore = [&] {
+    for (std::size_t i = 0; i < lane_slots_.size(); ++i) *lane_slots_[i].address = saved_parameters[i];
+    results_.restore(saved_values_);
+    light_ = saved_light;
+  };
+  try {
+    for (int lane = 0; lane < lane_count; ++lane) {
+      for (std::size_t i = 0; i < lane_slots_.size(); ++i) *lane_slots_[i].address = lane_parameters_[i].values(lane);
+      for (std::size_t id = 0; id < results_.size(); ++id) results_.set(id, lane_results_[id](lane));
+      light_.illumination_scale = lane_scales_.illumination(lane);
+      light_.signal.scale = lane_scales_.signal(lane);
+      light_.background.scale = lane_scales_.background(lane);
+      light_.up_path_scale = lane_scales_.up_path(lane);
+      Context context(results_, light_, slot.section, slot.plugin, detail);
+      run_stage(slot, sensor_file, [&] { slot.stage->evaluate(context); });
+      for (ResultId id : slot.declarations) lane_results_[id](lane) = results_.value(id);
+      lane_scales_.illumination(lane) = light_.illumination_scale;
+      lane_scales_.signal(lane) = light_.signal.scale;
+      lane_scales_.background(lane) = light_.background.scale;
+      lane_scales_.up_path(lane) = light_.up_path_scale;
+    }
+  } catch (...) {
+    restore();
+    throw;
   }
-  for (std::size_t i = 0; i < lane_slots_.size(); ++i) *lane_slots_[i].address = saved_parameters[i];
-  results_.restore(saved_values_);
-  light_ = saved_light;
+  restore();
 }
 
 void Chain::evaluate(Detail detail) {
