@@ -126,9 +126,12 @@ TEST(Units, UnparsableUnitIsAnInvalidArgument) {
 // Issue 18 (found by tests/fuzz/overrides_fuzz): a zero factor followed by a name made udunits2 leak that name
 // (LeakSanitizer in the ASan build reports it at exit). Refused like any unparsable unit; the units after it parse.
 TEST(Units, ZeroFactorIsRefusedWithoutLeak) {
-  for (const char* unit : {"m 0A", "m/0A", "m*0.0A", "pt 0Aics.apertc", "A 0e0A"})
+  // The '.' that multiplies (after a name or an exponent; spectrum_csv_fuzz, seed 1: "wavelength_m,_pk.0X").
+  for (const char* unit : {"m 0A", "m/0A", "m*0.0A", "pt 0Aics.apertc", "A 0e0A", "pk.0X", "m.0X", "m2.0X"})
     EXPECT_THROW(units::conversion(unit, "m"), std::invalid_argument) << unit;
   EXPECT_DOUBLE_EQ(units::conversion("cm", "m").factor, 0.01);
+  EXPECT_DOUBLE_EQ(units::conversion("2.0 cm", "m").factor, 0.02);      // a decimal point, not a product
+  EXPECT_DOUBLE_EQ(units::conversion("kg.m", "kg m").factor, 1.0);
   EXPECT_DOUBLE_EQ(units::conversion("10 cm", "m").factor, 0.1);
   EXPECT_DOUBLE_EQ(units::conversion("0.5 m", "m").factor, 0.5);
 }

@@ -79,12 +79,26 @@ struct UnitDeleter {
 };
 using UnitPtr = std::unique_ptr<ut_unit, UnitDeleter>;
 
-// A factor of zero ("m 0A", "W/0.0sr") is never a unit, and udunits2 (2.2.28) leaks the name that follows it
-// when it refuses one (its parser drops the lexer's copy; found by tests/fuzz/overrides_fuzz). Refused here first.
+// A factor of zero ("m 0A", "W/0.0sr", "m.0X") is never a unit, and udunits2 (2.2.28) leaks the name that
+// follows it when it refuses one (its parser drops the lexer's copy; found by tests/fuzz/overrides_fuzz and
+// spectrum_csv_fuzz). Refused here first.
+// A numeric factor can start at the string's start, after a space, '*', '/' or '(', or after a '.' that
+// multiplies (udunits reads "kg.m" as kg·m): one after a name, or after an exponent ("m2.0" is m²·0), but not
+// the decimal point of a number ("2.0").
+bool factor_starts_at(const std::string& unit, std::size_t i) {
+  if (i == 0) return true;
+  const char before = unit[i - 1];
+  if (std::isspace(static_cast<unsigned char>(before)) || std::strchr("*/(", before)) return true;
+  if (before != '.') return false;
+  std::size_t digits = i - 1;  // the digits just before the '.'
+  while (digits > 0 && std::isdigit(static_cast<unsigned char>(unit[digits - 1]))) --digits;
+  if (digits == i - 1) return true;                            // no digits: a name or ')' before the '.'
+  return digits > 0 && std::isalpha(static_cast<unsigned char>(unit[digits - 1]));  // an exponent
+}
+
 bool has_zero_factor(const std::string& unit) {
   for (std::size_t i = 0; i < unit.size(); ++i) {
-    const bool starts = i == 0 || std::isspace(static_cast<unsigned char>(unit[i - 1])) || std::strchr("*/(", unit[i - 1]);
-    if (!starts || !(std::isdigit(static_cast<unsigned char>(unit[i])) || unit[i] == '.')) continue;
+    if (!factor_starts_at(unit, i) || !(std::isdigit(static_cast<unsigned char>(unit[i])) || unit[i] == '.')) continue;
     char* end = nullptr;
     const double factor = std::strtod(unit.c_str() + i, &end);
     if (end != unit.c_str() + i && factor == 0) return true;
