@@ -2,7 +2,8 @@
 // in an n×n window (ensquared energy) or by PSF-weighted photometry (noise-equivalent area n_eff), over
 // `exposures` co-added frames, optionally with `tdi_stages` of charge-domain TDI and b×b digital binning.
 //   image     S_img = N_tdi t ∫ P_λ η(λ) λ/(hc) dλ        (EMVA 1288 eq. 1, μ_e = η μ_p; Pan 2010 eqs. 6-8)
-//   signal    window: S₁ = EE · S_img;  psf: S₁ = S_img (the optimal estimator recovers the whole image)
+//   signal    window: S₁ = EE · S_img;  circle: S₁ = EC(R) · S_img;  psf: S₁ = S_img (the optimal estimator
+//             recovers the whole image)
 //   per (binned) pixel, one exposure (b² native pixels summed digitally; TDI: signal and dark × N_tdi, read once):
 //     temporal  v_t = b² [N_tdi (B + μ_I t) + σ_d0² + σ_q²/K² + σ_other²],  σ_q² = 1/12 DN²   (EMVA eqs. 5, 29)
 //     spatial   v_s = b² σ_DSNU²                                                               (EMVA §2.4, eq. 18)
@@ -10,11 +11,18 @@
 //     temporal noise adds in variance over M frames; the fixed patterns (DSNU, PRNU s_g) repeat in every frame
 //     of the same pixels and add in amplitude (EMVA 1288 §2.4: spatial non-uniformity does not average out).
 //     PRNU on the point image: Σ_i (s_g S f_i)² = s_g² S² Σ f_i² = s_g² S²/n_eff (n_eff = 1/Σ f_i²).
-//   n_pix = n² (window) or n_eff (psf: King 1983; LSST SMTN-002; physics/emva1288.hpp)
+//   n_pix = n² (window), π R²/(b p)² (circle of radius R on the focal plane: the aperture's area in pixels, as
+//   aperture photometry counts its sky and read noise; Howell, Handbook of CCD Astronomy 2nd ed. (2006) eq. 4.4),
+//   or n_eff (psf: King 1983; LSST SMTN-002; physics/emva1288.hpp)
 //   SNR = M S₁ / n                                           (EMVA eq. 6 summed over the photometric aperture)
 // The PSF: optics' Airy (psf = "airy") or Gaussian (psf = "gaussian"), or atmospheric seeing (an atmosphere that
 // publishes atmosphere.seeing_fwhm) added in quadrature to the diffraction core as a Gaussian (Ivezić et al. 2019
 // §3.2). Without a PSF all of the image falls in one pixel (Pan 2010's assumption): the brightest pixel gets it all.
+// Line-of-sight jitter (`jitter`, rms per axis, σ_j) blurs the exposure by a Gaussian of σ_j f' (its MTF is
+// exp(−2π² σ_j² ν²): Holst, Electro-Optical Imaging System Performance 5th ed. (2008) §10.4), added in quadrature
+// to the PSF's Gaussian FWHM; an Airy core is then taken as its Gaussian (physics::diffraction_fwhm_rad).
+// Circular apertures (`photometry = "circle"`, `aperture_radius` on the sky): encircled energy of the PSF,
+// Gaussian 1 − exp(−R²/2σ²) or the (obscured) Airy closed form of physics/psf.hpp.
 // Sky: the background radiance of the atmosphere (light.background: the site's sky, flat in f_ν or a dark-sky
 // table), imaged by the optics as an extended scene (E'_λ = π L_λ τ(λ) (1 − ε²)/(4N²), transmittance curve
 // included) is counted by étendue per native pixel, like an extended scene below:
@@ -96,8 +104,13 @@ const Schema& schema() {
       integer("tdi_stages", "64").fallback("1").at_least(1).at_most(10000)
           .described("charge-domain TDI stages N: signal and dark × N, read noise once"),
       quantity("pixel_pitch", "m", "4.5 um").needed().above(0).described("native pixel pitch"),
-      choice("photometry", {"window", "psf"}).fallback("window")
-          .described("window: n×n pixels with the PSF's ensquared energy; psf: PSF-weighted, n_eff pixels"),
+      choice("photometry", {"window", "circle", "psf"}).fallback("window")
+          .described("window: n×n pixels with the PSF's ensquared energy; circle: a circular aperture of "
+                     "aperture_radius with its encircled energy; psf: PSF-weighted, n_eff pixels"),
+      quantity("aperture_radius", "rad", "1.5 arcsec").above(0).below(0.1)
+          .described("radius R of the circular photometric aperture on the sky (photometry = \"circle\")"),
+      quantity("jitter", "rad", "0.2 arcsec").fallback("0 rad").at_least(0).below(0.1)
+          .described("rms line-of-sight jitter per axis during the exposure: a Gaussian blur added to the PSF"),
       integer("window_pixels", "3").fallback("1").at_least(1).at_most(1000)
           .described("side n of the n×n window in (binned) pixels (photometry = \"window\")"),
       number("ensquared_energy", "0.8").above(0).at_most(1)
@@ -131,7 +144,8 @@ class Emva1288 final : public Stage {
         other_(p.handle("other_noise")), bits_(p.handle("adc_bits")), binning_(p.handle("binning")),
         exposures_(p.handle("exposures")), tdi_(p.handle("tdi_stages")), pitch_(p.handle("pixel_pitch")),
         window_(p.handle("window_pixels")), ensquared_(p.handle("ensquared_energy")),
-        psf_photometry_(p.text("photometry") == "psf"), rate_(p.handle("target_rate")),
+        psf_photometry_(p.text("photometry") == "psf"), circle_photometry_(p.text("photometry") == "circle"),
+        aperture_radius_(p.handle("aperture_radius")), jitter_(p.handle("jitter")), rate_(p.handle("target_rate")),
         moving_(p.given("target_rate")), rate_tracking_(p.text("tracking") == "rate"),
         reference_radiance_(p.handle("reference_radiance")),
         reference_reflectance_(p.handle("reference_reflectance")) {
@@ -140,6 +154,13 @@ class Emva1288 final : public Stage {
       p.reject("window_pixels", "is used only with photometry = \"window\" (PSF-weighted photometry uses n_eff pixels)");
     if (psf_photometry_ && p.given("ensquared_energy"))
       p.reject("ensquared_energy", "is used only with photometry = \"window\"");
+    if (circle_photometry_) {
+      for (const char* key : {"window_pixels", "ensquared_energy"})
+        if (p.given(key)) p.reject(key, "is used only with photometry = \"window\" (a circle takes aperture_radius)");
+      if (!p.given("aperture_radius")) p.reject("photometry", "photometry = \"circle\" needs aperture_radius");
+    } else if (p.given("aperture_radius")) {
+      p.reject("aperture_radius", "is used only with photometry = \"circle\"");
+    }
     if (moving_ && !psf_photometry_)
       p.reject("target_rate", "a streak is measured by PSF-weighted photometry along it: set photometry = \"psf\"");
     if (moving_ && p.get("tdi_stages") > 1)
@@ -193,9 +214,12 @@ class Emva1288 final : public Stage {
       c.refuse_form("the sky as a focal-plane irradiance (a telescope with a focal_length)", background.form);
     // Electrons s-1 per m² of focal plane per unit background scale (before qe), as for an extended scene.
     if (has_sky_) sky_rate_per_scale_ = physics::photon_rate(background.spectrum, lo, hi, qe_curve);
-    if (psf_photometry_ && !seeing_ && !gaussian_fwhm_ && !(psf_wavelength_ && f_number_))
-      params_.reject("photometry", "photometry = \"psf\" needs a PSF: seeing from the atmosphere or psf = \"airy\"/"
-                                   "\"gaussian\" in the optics");
+    if ((psf_photometry_ || circle_photometry_) && !seeing_ && !gaussian_fwhm_ && !(psf_wavelength_ && f_number_))
+      params_.reject("photometry", "photometry = \"" + params_.text("photometry") + "\" needs a PSF: seeing from the "
+                                   "atmosphere or psf = \"airy\"/\"gaussian\" in the optics");
+    for (const char* key : {"aperture_radius", "jitter"})
+      if (params_.given(key) && !focal_length_)
+        params_.reject(key, "an angle on the sky needs the optics' focal_length to give it on the pixels");
     if (moving_ && !focal_length_)
       params_.reject("target_rate", "a rate in angle needs the optics' focal_length to give the streak on the pixels");
 
@@ -207,9 +231,15 @@ class Emva1288 final : public Stage {
     id_snr_ = c.declare(vocabulary::detector_snr, "M S₁ / noise (EMVA 1288 eq. 6 over the photometric aperture)");
     id_time_ = c.declare(vocabulary::detector_integration_time, "input t", "s");
     id_pixels_ = c.declare(vocabulary::detector_window_pixel_count,
-                           psf_photometry_ ? "n_eff (PSF-weighted photometry)" : "n² pixels of the window");
+                           psf_photometry_      ? "n_eff (PSF-weighted photometry)"
+                           : circle_photometry_ ? "π R²/(b p)²: the circular aperture's area in (binned) pixels"
+                                                : "n² pixels of the window");
     id_ensquared_ = c.declare(vocabulary::detector_ensquared_energy,
-                              psf_photometry_ ? "1 (PSF-weighted)" : "EE of the PSF over the window (or input)");
+                              psf_photometry_      ? "1 (PSF-weighted)"
+                              : circle_photometry_ ? "EC(R): the PSF's encircled energy in the circular aperture"
+                                                   : "EE of the PSF over the window (or input)");
+    if (circle_photometry_)
+      id_aperture_radius_ = c.declare(vocabulary::detector_aperture_radius_pixels, "R f' / (b p)");
     id_neff_ = c.declare(vocabulary::detector_noise_equivalent_area,
                          "n_eff = 1/Σ f_i² of the PSF on the (binned) pixel grid (King 1983; SMTN-002)");
     id_fill_ = c.declare(vocabulary::detector_peak_pixel_fill, "brightest native pixel / min(μ_e.sat, (2^bits−1)/K)", "%");
@@ -220,7 +250,8 @@ class Emva1288 final : public Stage {
     id_sky_ = c.declare(vocabulary::detector_sky_electrons_per_pixel,
                         "B = N_tdi b² t p² ∫ E'_λ,sky η λ/(hc) dλ (étendue) per binned pixel and frame", "e-");
     id_peak_fraction_ = c.declare("peak_pixel_fraction", "1", "fraction of the point image in the brightest native pixel");
-    id_psf_fwhm_ = c.declare(vocabulary::detector_psf_fwhm, "Gaussian PSF FWHM on the focal plane (seeing ⊕ diffraction)", "um");
+    id_psf_fwhm_ = c.declare(vocabulary::detector_psf_fwhm,
+                             "Gaussian PSF FWHM on the focal plane (seeing ⊕ diffraction ⊕ 2√(2 ln 2) σ_j f' jitter)", "um");
     id_quant_ = c.declare("quantisation_noise", "electron", "σ_q/K = 1/(√12 K) per pixel (EMVA eq. 5)", "e-");
     id_dark_ = c.declare("dark_electrons", "electron", "n_pix b² N_tdi μ_I t per frame", "e-");
     id_read_noise_ = c.declare("read_noise", "electron", "√(n_pix b² σ_d0²) per frame", "e-");
@@ -257,28 +288,30 @@ class Emva1288 final : public Stage {
     const double t = *time_, qe = *qe_, gain = *gain_, pitch = *pitch_;
     const double b = *binning_, m = *exposures_, tdi = *tdi_;
     const double binned = b * pitch;
-    // The PSF as a Gaussian FWHM on the focal plane when seeing or a Gaussian optics PSF is given.
+    // The PSF as a Gaussian FWHM on the focal plane when seeing, a Gaussian optics PSF or jitter is given.
     double fwhm = 0.0;
     const bool airy = psf_wavelength_ && f_number_;
-    if (seeing_) {
-      const double f = opt(focal_length_);
-      const double seeing = a.value(*seeing_) * f;
+    const double f = opt(focal_length_);
+    const double jitter_fwhm = physics::gaussian_fwhm_from_sigma(*jitter_ * f);
+    if (seeing_ || gaussian_fwhm_ || jitter_fwhm > 0) {
       double optics = opt(gaussian_fwhm_);
-      if (airy) optics = physics::diffraction_fwhm_rad(a.value(*psf_wavelength_), f / a.value(*f_number_)) * f;
-      fwhm = std::hypot(seeing, optics);
-    } else if (gaussian_fwhm_) {
-      fwhm = a.value(*gaussian_fwhm_);
+      if (airy) optics = physics::diffraction_fwhm_rad(a.value(*psf_wavelength_), 1.0) * a.value(*f_number_);
+      const double seeing = seeing_ ? a.value(*seeing_) * f : 0.0;
+      fwhm = std::hypot(std::hypot(seeing, optics), jitter_fwhm);
     }
     double neff = 1.0, peak_fraction = 1.0, ensquared = 1.0;
     const double n = *window_;
+    const double radius_m = circle_photometry_ ? *aperture_radius_ * f : 0.0;
     if (fwhm > 0) {
       neff = physics::gaussian_noise_equivalent_area_px(fwhm / binned);
       peak_fraction = physics::gaussian_peak_pixel_fraction(fwhm / pitch);
-      ensquared = physics::gaussian_ensquared_energy(n * binned, fwhm);
+      ensquared = circle_photometry_ ? physics::gaussian_encircled_energy(radius_m, fwhm)
+                                     : physics::gaussian_ensquared_energy(n * binned, fwhm);
     } else if (airy) {
       const double lambda = a.value(*psf_wavelength_), fn = a.value(*f_number_), eps = opt(obscuration_);
       peak_fraction = physics::airy_ensquared_energy(pitch, lambda, fn, eps);
-      ensquared = physics::airy_ensquared_energy(n * binned, lambda, fn, eps);
+      ensquared = circle_photometry_ ? physics::airy_encircled_energy(radius_m, lambda, fn, eps)
+                                     : physics::airy_ensquared_energy(n * binned, lambda, fn, eps);
       // n_eff of the Airy core approximated by a Gaussian of the same FWHM (physics::diffraction_fwhm_rad).
       neff = physics::gaussian_noise_equivalent_area_px(physics::diffraction_fwhm_rad(lambda, 1.0) * fn / binned);
     }
@@ -300,7 +333,8 @@ class Emva1288 final : public Stage {
     const double dark_binned = b * b * tdi * *dark_current_ * t;
     const double quant_var = physics::emva_quantisation_variance_e2(gain);
     const double read_var_binned = b * b * (*dark_noise_ * *dark_noise_ + quant_var + *other_ * *other_);
-    const double pixels = psf_photometry_ ? neff : n * n;
+    const double circle_pixels = std::numbers::pi * radius_m * radius_m / (binned * binned);
+    const double pixels = psf_photometry_ ? neff : circle_photometry_ ? circle_pixels : n * n;
     const double temporal = m * (signal1 + pixels * (sky_binned + dark_binned + read_var_binned));
     const double prnu_amp = m * *prnu_ * signal1 / std::sqrt(neff);
     const double spatial = m * m * pixels * b * b * *dsnu_ * *dsnu_ + prnu_amp * prnu_amp;
@@ -339,6 +373,7 @@ class Emva1288 final : public Stage {
     a.set(id_tdi_, tdi);
     a.set(id_peak_fraction_, peak_fraction);
     a.set(id_psf_fwhm_, fwhm);
+    if (circle_photometry_) a.set(id_aperture_radius_, radius_m / binned);
     a.set(id_quant_, std::sqrt(quant_var));
     a.set(id_dark_, pixels * dark_binned);
     a.set(id_read_noise_, std::sqrt(pixels * b * b) * *dark_noise_);
@@ -352,7 +387,7 @@ class Emva1288 final : public Stage {
  private:
   // ---- extended scenes (issue 14, item 3) ----
   void prepare_extended(Context& c, double lo, double hi, const Spectrum* qe_curve) {
-    for (const char* key : {"window_pixels", "ensquared_energy", "photometry"})
+    for (const char* key : {"window_pixels", "ensquared_energy", "photometry", "aperture_radius", "jitter"})
       if (params_.given(key)) params_.reject(key, "is used only for a point image (the target here is an extended scene)");
     if (params_.given("reference_radiance") && params_.given("reference_reflectance"))
       params_.reject("reference_reflectance", "give the reference as reference_radiance or as reference_reflectance, not both");
@@ -482,8 +517,8 @@ class Emva1288 final : public Stage {
   const Params& params_;
   const double *qe_, *time_, *gain_, *dark_noise_, *saturation_, *dark_current_, *prnu_, *dsnu_, *other_, *bits_,
       *binning_, *exposures_, *tdi_, *pitch_, *window_, *ensquared_;
-  bool psf_photometry_;
-  const double* rate_;
+  bool psf_photometry_, circle_photometry_;
+  const double *aperture_radius_, *jitter_, *rate_;
   bool moving_, rate_tracking_;
   ResultId id_bits_{}, id_dark_rate_{}, id_read_pixel_{}, id_target_streak_{}, id_star_streak_{}, id_streak_angle_{}, id_static_neff_{}, id_trailing_loss_{};
   bool extended_ = false, reference_given_ = false, reference_from_reflectance_ = false;
@@ -499,7 +534,8 @@ class Emva1288 final : public Stage {
   double sky_rate_per_scale_ = 0;  // electrons s-1 m-2 of focal plane per unit background scale, before qe
   ResultId id_image_{}, id_signal_{}, id_noise_{}, id_snr_{}, id_time_{}, id_pixels_{}, id_ensquared_{}, id_neff_{},
       id_fill_{}, id_peak_{}, id_saturation_{}, id_gain_{}, id_tdi_{}, id_sky_{}, id_peak_fraction_{}, id_psf_fwhm_{},
-      id_quant_{}, id_dark_{}, id_read_noise_{}, id_background_{}, id_shot_noise_{}, id_prnu_noise_{}, id_ab_zero_{};
+      id_quant_{}, id_dark_{}, id_read_noise_{}, id_background_{}, id_shot_noise_{}, id_prnu_noise_{}, id_ab_zero_{},
+      id_aperture_radius_{};
 };
 
 }  // namespace
@@ -514,8 +550,8 @@ RADCHAIN_PLUGIN(Emva1288, {
     .publishes = {vocabulary::detector_signal_electrons, vocabulary::detector_image_electrons,
                   vocabulary::detector_noise_electrons, vocabulary::detector_snr, vocabulary::detector_integration_time,
                   vocabulary::detector_window_pixel_count, vocabulary::detector_ensquared_energy,
-                  vocabulary::detector_sky_electrons_per_pixel, vocabulary::detector_peak_pixel_fill,
-                  vocabulary::detector_peak_pixel_electrons, vocabulary::detector_saturation_capacity,
+                  vocabulary::detector_aperture_radius_pixels, vocabulary::detector_sky_electrons_per_pixel,
+                  vocabulary::detector_peak_pixel_fill, vocabulary::detector_peak_pixel_electrons, vocabulary::detector_saturation_capacity,
                   vocabulary::detector_noise_equivalent_area, vocabulary::detector_system_gain,
                   vocabulary::detector_tdi_stages, vocabulary::detector_pixel_pitch, vocabulary::detector_scene_radiance,
                   vocabulary::detector_reference_radiance, vocabulary::detector_reference_signal_electrons,

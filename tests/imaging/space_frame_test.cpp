@@ -270,6 +270,14 @@ TEST(RenderSpaceFrame, RefusesSensorsItCannotRender) {
   SpaceFrameOptions o;
   o.psf = PsfModel::airy;  // no focal length, pitch or wavelength in the file
   EXPECT_THROW(space_frame_setup(sbv.chain, sbv.report, o), InputError);
+  // A circular photometric aperture: the frame checks count n×n windows, so it is refused, not mismeasured.
+  auto circle = load("rubin-lsst-r-m5.toml", {{"detector.photometry", "circle"}, {"detector.aperture_radius", "1 arcsec"}});
+  try {
+    space_frame_setup(circle.chain, circle.report, SpaceFrameOptions{});
+    ADD_FAILURE() << "a circular aperture was rendered";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("photometry = \"circle\" is not measured on frames"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

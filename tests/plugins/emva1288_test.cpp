@@ -3,6 +3,7 @@
 // (physics/magnitudes.hpp, tested on their own against published zero points) and, for Rubin/LSST, SMTN-002.
 #include "radchain/chain.hpp"
 #include "radchain/constants.hpp"
+#include "radchain/error.hpp"
 #include "radchain/physics/emva1288.hpp"
 #include "radchain/physics/magnitudes.hpp"
 #include "radchain/physics/streak.hpp"
@@ -193,6 +194,79 @@ TEST(Emva1288Chain, RubinLsstRBandDepth) {
   const double area = std::numbers::pi / 4 * 6.423 * 6.423;
   const double sky = 30 * area * 0.2 * 0.2 * std::pow(10.0, -0.4 * 21.2) * rate;
   EXPECT_NEAR(v("detector.sky_electrons_per_pixel") / sky, 1.0, 1e-3);
+}
+
+// Circular aperture photometry (issue 13 item 5): a circle of R = 10 µrad on the sky is 10 µm on the 1 m focal
+// plane, 2 pixels of 5 µm: the Gaussian's encircled energy 1 − exp(−R²/2σ²) (σ = FWHM/2√(2 ln 2)) of the image
+// is the signal, π R² = 4π pixels carry the read noise, and n_eff still sets the PRNU term.
+TEST(Emva1288Chain, CircularApertureEncircledEnergyAndAreaByHand) {
+  const Report r = run(write_sensor("circle", "magnitude = 12",
+                                    "dark_noise = \"3 e-\"\nphotometry = \"circle\"\naperture_radius = \"10 urad\"\n"));
+  auto v = [&](const std::string& n) { return r.value(n).value(); };
+  const double sigma = 10e-6 / (2 * std::sqrt(2 * std::numbers::ln2)), radius = 10e-6;
+  const double encircled = 1 - std::exp(-radius * radius / (2 * sigma * sigma));
+  EXPECT_NEAR(v("detector.ensquared_energy"), encircled, 1e-12);
+  EXPECT_NEAR(v("detector.signal_electrons"), encircled * v("detector.image_electrons"), 1e-9 * v("detector.signal_electrons"));
+  EXPECT_NEAR(v("detector.aperture_radius_pixels"), 2.0, 1e-12);
+  EXPECT_NEAR(v("detector.window_pixel_count"), 4 * std::numbers::pi, 1e-12);
+  const double s = v("detector.signal_electrons");
+  const double noise = std::sqrt(s + 4 * std::numbers::pi * (9 + 1 / (12 * 0.25)));
+  EXPECT_NEAR(v("detector.snr"), s / noise, 1e-9 * s / noise);
+}
+
+// An Airy image (D = 20 cm, λ = 550 nm, clear pupil) in a circle of the first dark ring's radius, 1.2197 λ/D on
+// the sky: 83.8 % of the light (Born & Wolf, Principles of Optics 7th ed. §8.5.2, 1 − J0²(3.8317) − J1²(3.8317)).
+TEST(Emva1288Chain, CircularApertureOfTheFirstDarkRingHoldsBornAndWolfs838Percent) {
+  std::string file = write_sensor("airy_circle", "magnitude = 12",
+                                  "dark_noise = \"3 e-\"\nphotometry = \"circle\"\naperture_radius = \"" +
+                                      std::to_string(3.831706 / std::numbers::pi * 550e-9 / 0.2 * 1e6) + " urad\"\n");
+  std::string text;
+  {
+    std::ifstream in(file);
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    text = buffer.str();
+  }
+  const std::string gaussian = "psf = \"gaussian\"\ngaussian_fwhm = \"10 um\"";
+  text.replace(text.find(gaussian), gaussian.size(), "psf = \"airy\"\npsf_wavelength = \"550 nm\"");
+  std::ofstream(file) << text;
+  const Report r = run(file);
+  EXPECT_NEAR(r.value("detector.ensquared_energy").value(), 0.838, 5e-4);
+  EXPECT_EQ(r.value("detector.psf_fwhm").value(), 0.0);  // the Airy pattern itself, not a Gaussian stand-in
+}
+
+// Jitter σ_j = 5 µrad on f' = 1 m blurs by a Gaussian of FWHM 2√(2 ln 2) · 5 µm, added in quadrature to the optics'
+// 10 µm; jitter = 0 leaves every number as without the key.
+TEST(Emva1288Chain, JitterAddsInQuadratureToThePsf) {
+  const std::string det = "dark_noise = \"3 e-\"\nphotometry = \"psf\"\n";
+  const Report still = run(write_sensor("nojitter", "magnitude = 12", det));
+  const Report zero = run(write_sensor("zerojitter", "magnitude = 12", det + "jitter = \"0 urad\"\n"));
+  const Report shaky = run(write_sensor("jitter", "magnitude = 12", det + "jitter = \"5 urad\"\n"));
+  auto v = [](const Report& r, const std::string& n) { return r.value(n).value(); };
+  const double fwhm = std::hypot(10e-6, 5e-6 * 2 * std::sqrt(2 * std::numbers::ln2));
+  EXPECT_NEAR(v(shaky, "detector.psf_fwhm"), fwhm, 1e-18);
+  EXPECT_NEAR(v(shaky, "detector.noise_equivalent_area"), physics::gaussian_noise_equivalent_area_px(fwhm / 5e-6), 1e-12);
+  EXPECT_LT(v(shaky, "detector.snr"), v(still, "detector.snr"));
+  for (const char* n : {"detector.snr", "detector.noise_equivalent_area", "detector.psf_fwhm", "detector.peak_pixel_fill"})
+    EXPECT_EQ(v(zero, n), v(still, n)) << n;
+}
+
+// The rules of the new keys, each refused at its key.
+TEST(Emva1288Chain, CircleAndJitterRules) {
+  auto refused = [](const std::string& detector, const std::string& key) {
+    const std::string file = write_sensor("rule", "magnitude = 12", "dark_noise = \"3 e-\"\n" + detector);
+    try {
+      load_sensor(file);
+      ADD_FAILURE() << "accepted: " << detector;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(file);
+  };
+  refused("photometry = \"circle\"\n", "photometry = \"circle\" needs aperture_radius");
+  refused("photometry = \"circle\"\naperture_radius = \"2 arcsec\"\nwindow_pixels = 3\n", "window_pixels = 3: is used only with");
+  refused("aperture_radius = \"2 arcsec\"\n", "aperture_radius = \"2 arcsec\": is used only with photometry = \"circle\"");
+  refused("jitter = \"-1 arcsec\"\n", "jitter");
 }
 
 // Moving targets (physics/streak.hpp): a target at 20 µrad/s on 1 m focal length trails 20 µm = 4 pixels in 1 s.

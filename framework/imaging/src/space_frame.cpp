@@ -115,6 +115,10 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
                                  "this sensor has " + (det ? "\"" + det->plugin + "\"" : "none") +
                                  " (a pushbroom sensor renders an Earth scene instead)");
   }
+  // The frame checks measure n×n windows; a circular aperture would be compared with the wrong pixels.
+  if (result(report, vocabulary::detector_aperture_radius_pixels))
+    refuse(file, "detector", "photometry = \"circle\" is not measured on frames (validate counts n×n windows): use "
+                             "photometry = \"window\" or \"psf\" to render or validate");
   const auto time = result(report, vocabulary::detector_integration_time);
   const auto well = result(report, vocabulary::detector_saturation_capacity);
   const auto bits = result(report, vocabulary::detector_adc_bits);

@@ -82,6 +82,8 @@ inline constexpr Term detector_sky_electrons_per_pixel{"detector.sky_electrons_p
 inline constexpr Term detector_window_pixel_count{"detector.window_pixel_count", "1", "pixels in the detection window"};
 inline constexpr Term detector_ensquared_energy{"detector.ensquared_energy", "1",
                                                 "fraction of the point image inside the detection window"};
+inline constexpr Term detector_aperture_radius_pixels{"detector.aperture_radius_pixels", "1",
+                                                      "radius of a circular photometric aperture in (binned) pixels"};
 inline constexpr Term detector_signal_irradiance{"detector.signal_irradiance", "W m-2",
                                                  "in-band focal-plane irradiance of the target contrast E'"};
 inline constexpr Term detector_nee_working{"detector.nee_working", "J m-2", "working noise-equivalent exposure H_nr"};
@@ -191,6 +193,7 @@ inline constexpr std::array all{
     optics_collecting_area, optics_transmittance, optics_focal_length, optics_f_number, optics_psf_wavelength,
     optics_gaussian_fwhm, detector_snr, detector_integration_time, detector_signal_electrons, detector_image_electrons,
     detector_noise_electrons, detector_sky_electrons_per_pixel, detector_window_pixel_count, detector_ensquared_energy,
+    detector_aperture_radius_pixels,
     detector_signal_irradiance, detector_nee_working, detector_utilisation_ratio, detector_element_size_for_mtf,
     detector_nu_half_contrast, detector_system_element, detector_line_length, criterion_margin, criterion_threshold,
     criterion_required_quality, criterion_wavelength, criterion_ground_element,

@@ -152,6 +152,7 @@ double airy_ensquared_energy(double side_m, double wavelength_m, double f_number
 }
 
 double gaussian_sigma_from_fwhm(double fwhm_m) { return fwhm_m / (2.0 * std::sqrt(2.0 * std::numbers::ln2)); }
+double gaussian_fwhm_from_sigma(double sigma_m) { return sigma_m * (2.0 * std::sqrt(2.0 * std::numbers::ln2)); }
 
 double gaussian_encircled_energy(double radius_m, double fwhm_m) {
   const double s = gaussian_sigma_from_fwhm(fwhm_m);

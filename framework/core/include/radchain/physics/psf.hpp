@@ -40,6 +40,7 @@ double airy_ensquared_energy(double side_m, double wavelength_m, double f_number
 // ---- Gaussian ------------------------------------------------------------------------------------------
 
 double gaussian_sigma_from_fwhm(double fwhm_m);
+double gaussian_fwhm_from_sigma(double sigma_m);  // 2 √(2 ln 2) σ
 double gaussian_encircled_energy(double radius_m, double fwhm_m);
 double gaussian_ensquared_energy(double side_m, double fwhm_m);
 
