@@ -127,7 +127,7 @@ TEST(Units, UnparsableUnitIsAnInvalidArgument) {
 // (LeakSanitizer in the ASan build reports it at exit). Refused like any unparsable unit; the units after it parse.
 TEST(Units, ZeroFactorIsRefusedWithoutLeak) {
   // The '.' that multiplies (after a name or an exponent; spectrum_csv_fuzz, seed 1: "wavelength_m,_pk.0X").
-  for (const char* unit : {"m 0A", "m/0A", "m*0.0A", "pt 0Aics.apertc", "A 0e0A", "pk.0X", "m.0X", "m2.0X"})
+  for (const char* unit : {"m 0A", "m/0A", "m*0.0A", "pt 0Aics.apertc", "A 0e0A", "pk.0X", "m.0X", "m2.0X", "W m -0nm"})
     EXPECT_THROW(units::conversion(unit, "m"), std::invalid_argument) << unit;
   EXPECT_DOUBLE_EQ(units::conversion("cm", "m").factor, 0.01);
   EXPECT_DOUBLE_EQ(units::conversion("2.0 cm", "m").factor, 0.02);      // a decimal point, not a product

@@ -98,7 +98,9 @@ bool factor_starts_at(const std::string& unit, std::size_t i) {
 
 bool has_zero_factor(const std::string& unit) {
   for (std::size_t i = 0; i < unit.size(); ++i) {
-    if (!factor_starts_at(unit, i) || !(std::isdigit(static_cast<unsigned char>(unit[i])) || unit[i] == '.')) continue;
+    const bool sign = (unit[i] == '-' || unit[i] == '+') && i + 1 < unit.size();  // "-0" is a zero too
+    const char first = sign ? unit[i + 1] : unit[i];
+    if (!factor_starts_at(unit, i) || !(std::isdigit(static_cast<unsigned char>(first)) || first == '.')) continue;
     char* end = nullptr;
     const double factor = std::strtod(unit.c_str() + i, &end);
     if (end != unit.c_str() + i && factor == 0) return true;
