@@ -411,18 +411,19 @@ def _catalogue_frame(table: str, errors, code: int):
 
 
 #: One parameter of a stage written in Python (radchain.parameter).
-Parameter = _namedtuple("Parameter", "key type unit example default required min max min_exclusive max_exclusive doc")
+Parameter = _namedtuple("Parameter", "key type unit example default required min max min_exclusive max_exclusive doc spectral")
 
 
 def parameter(key: str, type: str = "number", unit: str = "", default: str | None = None, example: str | None = None,
               required: bool = False, min: float = -_np.inf, max: float = _np.inf, min_exclusive: bool = False,
-              max_exclusive: bool = False, doc: str = "") -> Parameter:
+              max_exclusive: bool = False, doc: str = "", spectral: bool = False) -> Parameter:
     """A key of a Python stage's schema, as the C++ schemas declare theirs (radchain/schema.hpp): type "quantity"
     (unit: its SI unit, "m"; values written "15 cm"), "number" or "integer"; default and example as written in a
-    sensor file, without quotes ("15 cm", "5"); min/max in SI."""
+    sensor file, without quotes ("15 cm", "5"); min/max in SI. spectral=True: the stage's prepare() reads it, so a
+    change (set(), a sweep) re-runs the spectral phase (the C++ schemas' affects_spectrum())."""
     example = example if example is not None else default if default is not None else "1" + (f" {unit}" if unit else "")
     return Parameter(key, type, unit, f'"{example}"' if type == "quantity" else example, default, required,
-                     float(min), float(max), min_exclusive, max_exclusive, doc)
+                     float(min), float(max), min_exclusive, max_exclusive, doc, spectral)
 
 
 class Stage:
@@ -438,8 +439,17 @@ class Stage:
                 return {"criteria.*.margin": inputs["detector.snr"] / params["threshold"] - 1}
 
     evaluate() runs at every evaluation of the chain's scalar phase (solves, sweeps: one point at a time, the GIL
-    held), with params {key: SI value} (the keys given or defaulted) and inputs {term: SI value}; it returns a value
-    for every published term. The spectral phase (Light) is not reachable from Python.
+    held), with params {key: SI value} (the keys given or defaulted) and inputs {term: SI value}, plus the light's
+    scalars "light.signal.scale", "light.background.scale", "light.illumination.scale", "light.up_path.scale"; it
+    returns a value for every published term.
+
+    prepare(params, light) runs in the spectral phase (when the chain is built, and again when a spectral parameter
+    changes: declare the keys it reads with parameter(..., spectral=True)). light is a dict of what the stages before
+    this one made, per unit scale: "signal" and "background" ({"form", "wavelength_m", "value", "unit",
+    "extrapolation"} with numpy arrays, or None), "illumination", "up_path_transmittance", "path_radiance"
+    ({"wavelength_m", "value", "unit", "extrapolation"} or None) and "report_band_m" ((lo, hi) or None). A detector
+    prototype integrates the signal there and keeps the result on self for evaluate(). It reads the light only:
+    a Python stage cannot change what reaches the stages after it.
     """
     kind: str = ""
     name: str = ""
@@ -449,6 +459,9 @@ class Stage:
     publishes: dict = {}
     needs: list = []
     optional_needs: list = []
+
+    def prepare(self, params: dict, light: dict) -> None:
+        pass
 
     def evaluate(self, params: dict, inputs: dict) -> dict:
         raise NotImplementedError(f"{type(self).__name__}.evaluate(params, inputs)")

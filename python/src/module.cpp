@@ -521,6 +521,49 @@ py::tuple merge(const std::vector<std::string>& files, const std::string& format
 // A Python class with a schema, the vocabulary terms it publishes and needs, and evaluate(params, inputs) returning
 // {term: value}, added to the plugin host (PluginHost::add): a sensor file's plugin = "<name>" then builds it like a
 // library's stage. Its scalar phase calls Python with the GIL held, one point at a time: slow, and the same numbers.
+// Its optional prepare(params, light) sees the spectral phase: the light's spectra as numpy arrays (a detector
+// prototype integrates them); evaluate() then finds the light's scalars among its inputs ("light.signal.scale", ...).
+
+// A spectrum as {"wavelength_m", "value" (numpy, copies), "unit", "extrapolation"}, or None when empty.
+py::object spectrum_dict(const Spectrum& s) {
+  if (s.empty()) return py::none();
+  py::dict d;
+  d["wavelength_m"] = py::array_t<double>(s.size(), s.wavelength_m().data());
+  d["value"] = py::array_t<double>(s.size(), s.value().data());
+  d["unit"] = s.unit();
+  d["extrapolation"] = s.extrapolation() == Extrapolation::zero ? "zero" : "clamp";
+  return d;
+}
+
+// A radiation's form by the name light.hpp gives it, and the unit of spectrum × scale that the form implies (the
+// spectrum's own unit string is the target's: the optics change the form and fold their factors into the scale).
+py::object radiation_dict(const Radiation& r) {
+  static const std::map<RadiationForm, std::pair<const char*, const char*>> forms = {
+      {RadiationForm::pupil_irradiance, {"pupil_irradiance", "W m-2 m-1"}},
+      {RadiationForm::scene_radiance, {"scene_radiance", "W m-2 sr-1 m-1"}},
+      {RadiationForm::focal_power, {"focal_power", "W m-1"}},
+      {RadiationForm::focal_irradiance, {"focal_irradiance", "W m-2 m-1"}},
+  };
+  const auto form = forms.find(r.form);
+  if (form == forms.end() || r.spectrum.empty()) return py::none();
+  py::dict d = spectrum_dict(r.spectrum);
+  d["form"] = form->second.first;
+  d["unit"] = form->second.second;
+  return d;
+}
+
+// What a Python prepare() sees of the light (per unit scale: the scales are evaluate()'s inputs).
+py::dict light_dict(const Light& light) {
+  py::dict d;
+  d["signal"] = radiation_dict(light.signal);
+  d["background"] = radiation_dict(light.background);
+  d["illumination"] = spectrum_dict(light.illumination);
+  d["up_path_transmittance"] = spectrum_dict(light.up_path_transmittance);
+  d["path_radiance"] = spectrum_dict(light.path_radiance);
+  d["report_band_m"] = light.has_report_band() ? py::object(py::make_tuple(light.report_band_min_m, light.report_band_max_m))
+                                               : py::none();
+  return d;
+}
 
 struct PythonPlugin {
   std::string name, summary, reference;
@@ -562,6 +605,10 @@ class PythonStage final : public Stage {
   void prepare(Context& c) override {
     inputs_.clear();
     outputs_.clear();
+    {
+      py::gil_scoped_acquire gil;
+      if (py::hasattr(instance_, "prepare")) instance_.attr("prepare")(param_dict(), light_dict(c.light));
+    }
     for (const Need& need : plugin_.needs) {
       const std::string name(need.term.name);
       if (!need.optional) inputs_.emplace_back(name, c.require(need.term));
@@ -571,10 +618,13 @@ class PythonStage final : public Stage {
   }
   void evaluate(Context& c) override {
     py::gil_scoped_acquire gil;
-    py::dict params, inputs;
-    for (const auto& [key, handle] : params_) params[py::str(key)] = *handle;
+    py::dict inputs;
     for (const auto& [name, id] : inputs_) inputs[py::str(name)] = c.results.value(id);
-    const py::dict values = instance_.attr("evaluate")(params, inputs);
+    inputs["light.signal.scale"] = c.light.signal.scale;
+    inputs["light.background.scale"] = c.light.background.scale;
+    inputs["light.illumination.scale"] = c.light.illumination_scale;
+    inputs["light.up_path.scale"] = c.light.up_path_scale;
+    const py::dict values = instance_.attr("evaluate")(param_dict(), inputs);
     for (const auto& [name, id] : outputs_) {
       if (!values.contains(name))
         throw std::runtime_error(fmt::format("{} (Python stage \"{}\"): evaluate() returned no \"{}\"", c.section,
@@ -584,6 +634,12 @@ class PythonStage final : public Stage {
   }
 
  private:
+  py::dict param_dict() const {
+    py::dict params;
+    for (const auto& [key, handle] : params_) params[py::str(key)] = *handle;
+    return params;
+  }
+
   const PythonPlugin& plugin_;
   py::object instance_;
   std::vector<std::pair<std::string, const double*>> params_;
@@ -607,9 +663,9 @@ const Term& vocabulary_term(const std::string& name, const std::string& plugin) 
 }
 
 // One parameter: (key, type "quantity" | "number" | "integer", SI unit, example as TOML text, default or None,
-// required, min, max, min exclusive, max exclusive, doc).
+// required, min, max, min exclusive, max exclusive, doc, spectral: prepare() reads it, so a change re-runs it).
 using PythonParam = std::tuple<std::string, std::string, std::string, std::string, std::optional<std::string>, bool,
-                               double, double, bool, bool, std::string>;
+                               double, double, bool, bool, std::string, bool>;
 
 void register_stage(const std::string& kind_name, const std::string& name, const std::string& summary,
                     const std::string& reference, const std::vector<PythonParam>& params,
@@ -619,7 +675,8 @@ void register_stage(const std::string& kind_name, const std::string& name, const
   if (!kind) throw py::value_error(fmt::format("register_stage(\"{}\"): \"{}\" is not a kind of stage", name, kind_name));
   auto plugin = std::make_unique<PythonPlugin>();
   plugin->name = name, plugin->summary = summary, plugin->reference = reference, plugin->cls = cls;
-  for (const auto& [key, type, si_unit, example, fallback, required, min, max, min_exclusive, max_exclusive, doc] : params) {
+  for (const auto& [key, type, si_unit, example, fallback, required, min, max, min_exclusive, max_exclusive, doc, spectral] :
+       params) {
     ParamSpec spec = type == "quantity" ? quantity(key, si_unit, example)
                      : type == "integer" ? integer(key, example)
                      : type == "number"  ? number(key, example)
@@ -627,7 +684,7 @@ void register_stage(const std::string& kind_name, const std::string& name, const
                                                "register_stage(\"{}\"): parameter {}: type \"{}\" is not quantity, number or integer",
                                                name, key, type));
     spec.default_value = fallback, spec.required = required, spec.min = min, spec.max = max;
-    spec.min_exclusive = min_exclusive, spec.max_exclusive = max_exclusive, spec.doc = doc;
+    spec.min_exclusive = min_exclusive, spec.max_exclusive = max_exclusive, spec.doc = doc, spec.spectral = spectral;
     plugin->schema.push_back(std::move(spec));
   }
   for (const auto& [term, equation] : publishes) plugin->publishes.emplace_back(vocabulary_term(term, name), equation);
