@@ -16,6 +16,7 @@ packages=(
   libopenimageio-dev      # radchain render: FITS/PNG/TIFF output through OpenImageIO 2.4
   openimageio-tools       # iinfo/oiiotool, to inspect rendered frames and their FITS headers
   libfftw3-dev            # radchain render: PSFs and MTFs applied in the Fourier domain
+  libcfitsio-dev          # FITS frames: OpenImageIO 2.4's FITS plugin shifts rows (framework/imaging/src/image_io.cpp)
   python3-dev python3-pybind11 pybind11-dev   # `import radchain` (python/, docs/python.md), built for /usr/bin/python3
   python3-numpy python3-pandas python3-pytest # its arrays and tables, and its tests
   python3-distributed python3-dask          # radchain.dask: sweeps and catalogues over a dask cluster (docs/python.md)

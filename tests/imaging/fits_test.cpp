@@ -1,10 +1,15 @@
-// FITS and previews through OpenImageIO 2.4: pixels and header cards round-trip; the cards are standard FITS.
+// FITS through CFITSIO and previews through OpenImageIO 2.4: pixels and header cards round-trip; the cards and the
+// data layout are standard FITS (checked byte by byte here, not through the library that wrote them).
 #include "radchain/imaging/render.hpp"
 #include "render_test_helpers.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <filesystem>
 
 namespace {
@@ -44,14 +49,14 @@ TEST(RenderFits, FrameAndHeaderRoundTrip) {
   ASSERT_EQ(file.image.height, 24);
   EXPECT_EQ(file.image.pixels, frame.pixels);  // row 0 stays the top row
 
-  // Every card comes back through OpenImageIO: text exactly, numbers to float precision, logicals as T/F.
+  // Every card comes back: text exactly, numbers to float precision, logicals as logicals.
   for (const HeaderCard& card : header) {
     const HeaderCard* back = find_card(file.header, card.key);
     ASSERT_NE(back, nullptr) << card.key;
     if (const auto* text = std::get_if<std::string>(&card.value)) {
       EXPECT_EQ(std::get<std::string>(back->value), *text) << card.key;
     } else if (const auto* flag = std::get_if<bool>(&card.value)) {
-      EXPECT_EQ(std::get<std::string>(back->value), *flag ? "T" : "F") << card.key;
+      EXPECT_EQ(std::get<bool>(back->value), *flag) << card.key;
     } else {
       const double expected = *card_number(header, card.key);
       const auto got = card_number(file.header, card.key);
@@ -81,6 +86,33 @@ TEST(RenderFits, FrameAndHeaderRoundTrip) {
   EXPECT_EQ(raw_card(cards, "NADC")->value, "T");
   EXPECT_EQ(raw_card(cards, "SENSFILE")->value, "'msx-sbv.toml'");
   EXPECT_NEAR(std::stod(raw_card(cards, "LIMMAG")->value), sbv.report.value("target.magnitude").value(), 1e-15);
+}
+
+// FITS Standard 4.0 read by hand: header blocks of 2880 bytes up to END, then NAXIS1 × NAXIS2 big-endian values,
+// the first stored row the bottom of the picture, the file a whole number of 2880-byte blocks. OpenImageIO 2.4
+// wrote a blank first row and left the top row past the data (image_io.cpp); this is the check that catches it.
+TEST(RenderFits, DataLayoutIsStandard) {
+  Image image(5, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) image(x, y) = static_cast<float>(10 * y + x + 1);  // row 0 (top): 1..5
+  const std::string path = temp_path("layout.fits");
+  write_fits(path, image, {}, FitsPixel::float32);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size() % 2880, 0u);
+  std::size_t end = 0;
+  while (bytes.compare(end, 8, "END     ") != 0) end += 80;
+  const std::size_t data = (end / 2880 + 1) * 2880;
+  auto value = [&](int index) {  // big-endian IEEE float
+    std::uint32_t bits = 0;
+    for (int b = 0; b < 4; ++b) bits = (bits << 8) | static_cast<unsigned char>(bytes[data + 4 * index + b]);
+    float f;
+    std::memcpy(&f, &bits, 4);
+    return f;
+  };
+  for (int row = 0; row < 3; ++row)  // stored row k is picture row 2 − k
+    for (int x = 0; x < 5; ++x) EXPECT_EQ(value(row * 5 + x), image(x, 2 - row)) << row << "," << x;
+  EXPECT_EQ(read_image(path).image.pixels, image.pixels);  // and back, top row first
 }
 
 TEST(RenderFits, FloatAndInt32Frames) {

@@ -1,8 +1,16 @@
-// Images and files through OpenImageIO 2.4 (what its FITS writer does with metadata: render_image.hpp).
+// Images and files: FITS through CFITSIO, everything else through OpenImageIO 2.4.
+// Why not OpenImageIO for FITS: its 2.4 FITS plugin (fitsoutput.cpp, fitsinput.cpp) puts row y at (height − y)
+// rows into the data instead of (height − 1 − y): the file starts with a blank row, its top row lies past NAXIS2
+// rows and the file is not a whole number of 2880-byte blocks. OpenImageIO reads its own files back the same way,
+// so they round-trip there, but astropy, DS9 and CFITSIO see the picture shifted by one row. CFITSIO (HEASARC, the
+// reference FITS library; Debian libcfitsio-dev) writes and reads the standard layout (FITS Standard 4.0 §3.3,
+// §4.4): the header in 2880-byte blocks, then NAXIS1 × NAXIS2 big-endian values, the first row stored being the
+// bottom of the picture (pixel (1, 1) at the lower left, the display convention), padded to 2880 bytes.
 #include "radchain/atomic_file.hpp"
 #include "radchain/imaging/image.hpp"
 
 #include <OpenImageIO/imageio.h>
+#include <fitsio.h>
 
 #include <algorithm>
 #include <cctype>
@@ -53,13 +61,30 @@ std::string real_text(double value) {
   return text;
 }
 
-OIIO::TypeDesc oiio_type(FitsPixel pixel) {
-  switch (pixel) {
-    case FitsPixel::int16: return OIIO::TypeDesc::INT16;
-    case FitsPixel::int32: return OIIO::TypeDesc::INT32;
-    case FitsPixel::float32: break;
-  }
-  return OIIO::TypeDesc::FLOAT;
+bool is_fits_path(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == "fits" || ext == "fit" || ext == "fts";
+}
+
+// A CFITSIO call that failed: its status as text, and the first message of its error stack.
+[[noreturn]] void fits_failure(const std::string& what, const std::string& path, int status) {
+  char text[FLEN_STATUS] = {}, message[FLEN_ERRMSG] = {};
+  fits_get_errstatus(status, text);
+  std::string detail = text;
+  if (fits_read_errmsg(message)) detail += std::string(" (") + message + ")";
+  fits_clear_errmsg();
+  throw std::runtime_error(what + " \"" + path + "\": " + detail);
+}
+
+// The picture's rows bottom-up (FITS stores the bottom row first), converted to T.
+template <class T>
+std::vector<T> fits_rows(const Image& image, const std::vector<T>& values) {
+  std::vector<T> out(values.size());
+  const std::size_t w = static_cast<std::size_t>(image.width);
+  for (int y = 0; y < image.height; ++y)
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(y * w), w,
+                out.begin() + static_cast<std::ptrdiff_t>((image.height - 1 - y) * w));
+  return out;
 }
 
 template <class T>
@@ -151,29 +176,55 @@ FitsPixel fits_pixel_for(const Image& image) {
 
 void write_fits(const std::string& path, const Image& image, const Header& header, FitsPixel pixel) {
   if (image.empty()) throw std::invalid_argument("write_fits: empty image");
-  OIIO::ImageSpec spec(image.width, image.height, 1, oiio_type(pixel));
+  if (!is_fits_path(path)) throw std::invalid_argument("write_fits: \"" + path + "\" is not a .fits path");
+  // The cards first: a bad key or a repeated one is refused before any file is made.
+  std::vector<std::string> records;
   std::set<std::string> seen;
   for (const auto& card : header) {
     check_key(card.key);
     if (!seen.insert(card.key).second) throw std::invalid_argument("FITS keyword \"" + card.key + "\" appears twice");
     std::string value = card_value_text(card);
     // "KEY     = " takes 10 of the card's 80 characters; a comment follows " / " when it fits (cut otherwise).
-    if (!card.comment.empty() && value.size() + 3 < 70) value += " / " + card.comment.substr(0, 70 - value.size() - 3);
-    spec.attribute(card.key, value);
+    std::string record = card.key + std::string(8 - card.key.size(), ' ') + "= " + std::string(value.size() < 20 ? 20 - value.size() : 0, ' ') + value;
+    if (value.front() == '\'') record = card.key + std::string(8 - card.key.size(), ' ') + "= " + value;  // strings start at column 11
+    if (!card.comment.empty() && record.size() + 3 < 80) record += " / " + card.comment.substr(0, 80 - record.size() - 3);
+    for (char& c : record)
+      if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';  // printable ASCII only
+    records.push_back(record.substr(0, 80));
   }
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) oiio_failure("cannot write", path, {});
   AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
-  if (out->format_name() != std::string("fits")) throw std::invalid_argument("write_fits: \"" + path + "\" is not a .fits path");
-  if (!out->open(file.temporary_path(), spec)) oiio_failure("cannot write", path, out->geterror());
-  bool ok = false;
+  int status = 0;
+  fitsfile* fits = nullptr;
+  const std::string target = "!" + file.temporary_path();  // '!': replace an existing file
+  if (fits_create_file(&fits, target.c_str(), &status)) fits_failure("cannot write", path, status);
+  long axes[2] = {image.width, image.height};
+  const LONGLONG count = static_cast<LONGLONG>(image.size());
   switch (pixel) {
-    case FitsPixel::int16: ok = out->write_image(OIIO::TypeDesc::INT16, integers<std::int16_t>(image).data()); break;
-    case FitsPixel::int32: ok = out->write_image(OIIO::TypeDesc::INT32, integers<std::int32_t>(image).data()); break;
-    case FitsPixel::float32: ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()); break;
+    case FitsPixel::int16: {
+      auto values = fits_rows(image, integers<std::int16_t>(image));
+      fits_create_img(fits, SHORT_IMG, 2, axes, &status);
+      for (const auto& r : records) fits_write_record(fits, r.c_str(), &status);
+      fits_write_img(fits, TSHORT, 1, count, values.data(), &status);
+      break;
+    }
+    case FitsPixel::int32: {
+      auto values = fits_rows(image, integers<std::int32_t>(image));
+      fits_create_img(fits, LONG_IMG, 2, axes, &status);
+      for (const auto& r : records) fits_write_record(fits, r.c_str(), &status);
+      fits_write_img(fits, TINT, 1, count, values.data(), &status);
+      break;
+    }
+    case FitsPixel::float32: {
+      auto values = fits_rows(image, image.pixels);
+      fits_create_img(fits, FLOAT_IMG, 2, axes, &status);
+      for (const auto& r : records) fits_write_record(fits, r.c_str(), &status);
+      fits_write_img(fits, TFLOAT, 1, count, values.data(), &status);
+      break;
+    }
   }
-  if (!ok) oiio_failure("cannot write", path, out->geterror());
-  if (!out->close()) oiio_failure("cannot write", path, out->geterror());
+  int closing = 0;
+  fits_close_file(fits, &closing);
+  if (status || closing) fits_failure("cannot write", path, status ? status : closing);
   file.commit();
 }
 
@@ -190,7 +241,67 @@ void write_float_image(const std::string& path, const Image& image, const Header
   file.commit();
 }
 
+namespace {
+
+// A FITS card's value as typed: 'text' (quotes undone), T/F, an integer, else a real.
+HeaderCard typed_card(const RawCard& raw) {
+  HeaderCard card{raw.key, std::string(), raw.comment};
+  const std::string& v = raw.value;
+  if (v.size() >= 2 && v.front() == '\'') {
+    std::string text;
+    for (std::size_t i = 1; i + 1 < v.size(); ++i) {
+      text += v[i];
+      if (v[i] == '\'' && v[i + 1] == '\'') ++i;
+    }
+    text.erase(text.find_last_not_of(' ') + 1);  // trailing blanks are not significant (FITS 4.0 §4.2.1)
+    card.value = text;
+  } else if (v == "T" || v == "F") {
+    card.value = v == "T";
+  } else if (!v.empty() && v.find_first_of(".EeDd") == std::string::npos) {
+    card.value = static_cast<std::int64_t>(std::stoll(v));
+  } else if (!v.empty()) {
+    std::string number = v;
+    std::replace(number.begin(), number.end(), 'D', 'E');  // FITS allows D exponents
+    card.value = std::stod(number);
+  }
+  return card;
+}
+
+// A FITS primary image through CFITSIO (see the top of this file): pixels as stored, top row first.
+ImageFile read_fits(const std::string& path) {
+  int status = 0, bitpix = 0, naxis = 0;
+  long axes[2] = {0, 0};
+  fitsfile* fits = nullptr;
+  if (fits_open_image(&fits, path.c_str(), READONLY, &status)) fits_failure("cannot read", path, status);
+  fits_get_img_param(fits, 2, &bitpix, &naxis, axes, &status);
+  if (!status && (naxis != 2 || axes[0] < 1 || axes[1] < 1)) {
+    fits_close_file(fits, &status);
+    throw std::runtime_error("cannot read \"" + path + "\": not a 2-D image (NAXIS = " + std::to_string(naxis) + ")");
+  }
+  ImageFile file;
+  file.format = "fits";
+  file.pixel_type = bitpix == 8 ? "uint8" : bitpix == 16 ? "int16" : bitpix == 32 ? "int32" : bitpix == -64 ? "double" : "float";
+  const int w = static_cast<int>(axes[0]), h = static_cast<int>(axes[1]);
+  std::vector<double> values(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  int any_null = 0;
+  if (!status) fits_read_img(fits, TDOUBLE, 1, static_cast<LONGLONG>(values.size()), nullptr, values.data(), &any_null, &status);
+  int closing = 0;
+  fits_close_file(fits, &closing);
+  if (status) fits_failure("cannot read", path, status);
+  file.image = Image(w, h);
+  for (int y = 0; y < h; ++y)  // stored bottom row first
+    for (int x = 0; x < w; ++x)
+      file.image(x, y) = static_cast<float>(values[static_cast<std::size_t>(h - 1 - y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)]);
+  static const std::set<std::string> structural = {"SIMPLE", "BITPIX", "NAXIS", "NAXIS1", "NAXIS2", "EXTEND", "COMMENT", "HISTORY"};
+  for (const RawCard& raw : read_fits_header_cards(path))
+    if (!structural.count(raw.key)) file.header.push_back(typed_card(raw));
+  return file;
+}
+
+}  // namespace
+
 ImageFile read_image(const std::string& path, PixelValues values) {
+  if (is_fits_path(path)) return read_fits(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) oiio_failure("cannot read", path, {});
   const OIIO::ImageSpec& spec = in->spec();
