@@ -28,6 +28,7 @@ from ._radchain import InputError, framework_version, plugin_abi_version
 
 __all__ = [
     "InputError", "Session", "Result", "load", "loads", "describe", "plugins", "compare", "catalogue", "budget", "uncertainty",
+    "render", "Image",
     "configure", "search_path", "set_threads", "threads", "framework_version", "plugin_abi_version",
     "Stage", "parameter", "register_stage",
 ]
@@ -398,6 +399,42 @@ def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True)
         raise TypeError("catalogue(set=...) takes TOML value text, as --set does")
     table, errors, code = _radchain.catalogue([str(i) for i in inputs], texts, list(results or []), not solve)
     return _catalogue_frame(table, errors, code)
+
+
+Image = _namedtuple("Image", "pixels header cards summary kind")
+Image.__doc__ = """radchain.render's answer: pixels (numpy float32, [row, column], row 0 at the top of the picture; a
+FITS file stores the bottom row first), header {key: value} (the FITS header's cards, bool/int/float/str), cards [(key, value, comment)] in order,
+summary (the lines `radchain render` prints) and kind ("frame": a detector frame of point targets; "scene": an
+Earth scene)."""
+
+
+def render(path, set: dict | None = None, targets=None, scene: str | None = None, seed: int = 1, star_seed: int = 1,
+           **options) -> Image:
+    """The image `radchain render` draws for a sensor file: a detector frame with point targets (and field stars)
+    or an Earth scene, as a numpy array and its FITS header — the same pixels as `radchain render PATH … --out
+    x.fits` with the same options. set: overrides as for load() (TOML value text). targets: "x,y,mag" or "mag"
+    texts, or (x, y, mag) tuples (mag may be "limit"); none: one at the limiting magnitude in the centre.
+    options: the command's render options (`radchain describe render`) with '_' for '-', written as on the command
+    line: width=64, height=64, stars=200, star_magnitudes="8:17", no_noise=["shot", "read"], gsd="5 m", ...
+    InputError for an option, target or sensor the command would refuse."""
+    from . import _imaging  # OpenImageIO and FFTW load with the first render, not with `import radchain`
+    texts, numbers = _split_sets(set)
+    if numbers:
+        raise TypeError("render(set=...) takes TOML value text, as --set does")
+    target_texts = [t if isinstance(t, str) else ",".join(str(v) for v in t) for t in (targets or [])]
+    given = []
+    for key, value in options.items():
+        if isinstance(value, bool):
+            if value:
+                given.append((key.replace("_", "-"), "true"))
+            continue
+        if isinstance(value, (list, tuple)):
+            value = ",".join(str(v) for v in value)
+        given.append((key.replace("_", "-"), str(value)))
+    pixels, cards, summary, kind = _imaging.render(str(path), texts, given, target_texts, scene or "", int(seed),
+                                                   int(star_seed))
+    header = {key: value for key, value, _comment in cards if key not in ("COMMENT", "HISTORY", "")}
+    return Image(pixels, header, cards, summary, kind)
 
 
 def _catalogue_frame(table: str, errors, code: int):

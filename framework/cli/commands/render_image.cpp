@@ -1,0 +1,145 @@
+// The image of `radchain render` as data (render_image.hpp): the options of render_option_schema() into the
+// renderer's options, the frame or scene drawn, its FITS header and the summary lines.
+#include "render_image.hpp"
+
+#include "imaging_common.hpp"
+
+#include "radchain/error.hpp"
+#include "radchain/imaging/render.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace radchain::cli {
+namespace {
+
+using namespace radchain::render;
+
+NoiseTerms noise_of(const Params& v) {
+  NoiseTerms n;
+  if (!v.has("--no-noise")) return n;
+  for (const auto& t : v.entry("--no-noise").texts) {
+    if (t == "all") n = NoiseTerms::none();
+    else if (t == "shot") n.shot = false;
+    else if (t == "dark") n.dark = false;
+    else if (t == "read") n.read = false;
+    else if (t == "saturation") n.saturation = false;
+    else if (t == "adc") n.quantisation = false;
+  }
+  return n;
+}
+
+RenderedImage render_space(Chain& chain, const Report& report, const RenderRequest& c, const Params& v) {
+  SpaceFrameOptions o;
+  o.width = static_cast<int>(v.integer("--width"));
+  o.height = static_cast<int>(v.integer("--height"));
+  for (const auto& t : c.targets) {
+    std::vector<double> xym;
+    std::stringstream list(t);
+    std::string item;
+    try {
+      while (std::getline(list, item, ',')) xym.push_back(item == "limit" ? std::nan("") : std::stod(item));
+    } catch (const std::exception&) {
+      bad_option("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
+    }
+    if (xym.size() == 1) o.targets.push_back({std::floor(o.width / 2.0) + 0.5, std::floor(o.height / 2.0) + 0.5, xym[0]});
+    else if (xym.size() == 3) o.targets.push_back({xym[0], xym[1], xym[2]});
+    else bad_option("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
+    if (xym.size() == 3 && (std::isnan(xym[0]) || std::isnan(xym[1]))) bad_option("--target", t, "the position must be numbers");
+  }
+  o.stars.count = static_cast<int>(v.integer("--stars"));
+  o.stars.slope = v.get("--star-slope");
+  o.stars.seed = c.star_seed;
+  if (v.has("--star-magnitudes")) {
+    const std::string& range = v.text("--star-magnitudes");
+    const auto colon = range.find(':');
+    try {
+      if (colon == std::string::npos) throw std::invalid_argument("no colon");
+      o.stars.bright_magnitude = std::stod(range.substr(0, colon));
+      o.stars.faint_magnitude = std::stod(range.substr(colon + 1));
+    } catch (const std::exception&) {
+      bad_option("--star-magnitudes", range, "expected bright:faint, e.g. 8:17");
+    }
+  }
+  apply_frame_geometry(o, v);
+  o.obscuration = v.maybe("--obscuration");
+  o.sky_electrons_per_pixel = v.maybe("--sky");
+  o.oversampling = static_cast<int>(v.integer("--oversampling"));
+  o.offset_dn = v.get("--offset");
+  o.noise = noise_of(v);
+  const SpaceFrameRenderer renderer(space_frame_setup(chain, report, o));
+  const SpaceFrameSetup& s = renderer.setup();
+  RenderedImage out;
+  out.image = renderer.render(c.seed);
+  out.header = renderer.header(c.seed);
+  const auto targets = std::count_if(s.sources.begin(), s.sources.end(), [](const auto& x) { return x.target; });
+  out.summary.push_back(fmt::format("{}: point-target frame {}×{}, PSF {}, limiting magnitude {:.4g}, {} targets, {} stars",
+                                    s.sensor_name, s.width, s.height, to_string(s.psf), s.limiting_magnitude, targets,
+                                    static_cast<std::ptrdiff_t>(s.sources.size()) - targets));
+  for (std::size_t k = 0; k < s.sources.size() && k < 9; ++k)
+    if (s.sources[k].target && s.target_streak_px > 0)
+      out.summary.push_back(fmt::format("  target at ({:.2f}, {:.2f}) magnitude {:.3f}: {:.4g} e- in a streak of {:.4g} pixels along +x",
+                 s.sources[k].x_px, s.sources[k].y_px, s.sources[k].magnitude, s.sources[k].electrons, s.target_streak_px));
+    else if (s.sources[k].target)
+      out.summary.push_back(fmt::format("  target at ({:.2f}, {:.2f}) magnitude {:.3f}: {:.4g} e- in the image, {:.4g} in the {}-pixel window",
+                 s.sources[k].x_px, s.sources[k].y_px, s.sources[k].magnitude, s.sources[k].electrons,
+                 s.sources[k].electrons * renderer.window_fraction(k, static_cast<int>(std::lround(std::sqrt(s.window_pixels)))),
+                 s.window_pixels));
+  out.summary.push_back(fmt::format("  dark {:.4g} e-, sky {:.4g} e-, read {:.4g} e- per pixel; {} ({:.4g} e-/DN, {} bits)",
+                                    s.dark_electrons, s.sky_electrons, s.read_noise_electrons, renderer.unit(),
+                                    s.gain_e_per_dn, s.adc_bits));
+  return out;
+}
+
+RenderedImage render_earth(Chain& chain, const Report& report, const RenderRequest& c, const Params& v) {
+  EarthSceneOptions o;
+  o.output_sampling_m = v.maybe("--gsd");
+  o.wavelength_m = v.maybe("--wavelength");
+  o.optics = *optics_mtf_from_string(v.text("--optics-mtf"));  // one of the schema's choices
+  o.detector_mtf = !v.flag("--no-detector-mtf");
+  o.adc_bits = static_cast<int>(v.integer("--adc-bits"));
+  const NoiseTerms n = noise_of(v);
+  o.noise = n.read || n.shot || n.dark;
+  o.saturation = n.saturation;
+  o.quantisation = n.quantisation;
+  Image map;
+  if (c.scene.empty()) {
+    // The built-in scene at a quarter of the output sampling.
+    o.input_sampling_m = 1.0;
+    const double gsd = earth_scene_setup(chain, report, o).output_sampling_m;
+    TestSceneOptions scene;
+    scene.sampling_m = v.maybe("--scene-sampling").value_or(gsd / 4.0);
+    scene.bar_unit_m = gsd;
+    map = make_test_scene(scene);
+    o.input_sampling_m = scene.sampling_m;
+  } else {
+    const auto sampling = v.maybe("--scene-sampling");
+    if (!sampling) bad_option("--scene-sampling", "", "give the ground size of one pixel of " + c.scene + ", e.g. \"1.25 m\"");
+    o.input_sampling_m = *sampling;
+    map = read_reflectance_map(c.scene);
+  }
+  const EarthSceneSetup s = earth_scene_setup(chain, report, o);
+  RenderedImage out;
+  out.point_targets = false;
+  out.image = render_earth_scene(s, map, c.seed);
+  out.header = earth_scene_header(s, c.seed);
+  const Image& image = out.image;
+  out.summary.push_back(fmt::format("{}: Earth scene {}×{} at {:.4g} m → {}×{} at {:.4g} m (optics MTF {}, λ = {:.4g} um, N = {:.4g})",
+                                    s.sensor_name, map.width, map.height, s.input_sampling_m, image.width, image.height,
+                                    s.output_sampling_m, to_string(s.optics), s.wavelength_m * 1e6, s.f_number));
+  out.summary.push_back(fmt::format("  exposure per unit reflectance {:.4g} J m-2, NEE {:.4g} J m-2, SNR of Δρ = {:.4g}: {:.4g}; {}",
+                                    s.exposure_per_reflectance(), s.nee_J_m2, s.reflectance_difference, s.snr, earth_unit(s)));
+  return out;
+}
+
+}  // namespace
+
+RenderedImage render_image(Chain& chain, const Report& report, const Params& options, const RenderRequest& request) {
+  if (is_point_target_sensor(chain)) return render_space(chain, report, request, options);
+  return render_earth(chain, report, request, options);
+}
+
+}  // namespace radchain::cli
