@@ -53,6 +53,15 @@ def _pandas():
     return pandas
 
 
+def _astropy_unit(unit: str):
+    """radchain's unit text ("W m-2 sr-1 m-1", "electron-1", "1") as an astropy unit (the same text)."""
+    try:
+        import astropy.units as u
+    except ImportError as error:
+        raise ImportError("Result.quantity() returns an astropy Quantity: install python3-astropy") from error
+    return u.dimensionless_unscaled if unit in ("", "1") else u.Unit(unit)
+
+
 def _is_number(value) -> bool:
     return isinstance(value, (_numbers.Real, _np.floating, _np.integer)) and not isinstance(value, (bool, _np.bool_))
 
@@ -119,6 +128,15 @@ class Result(_Mapping):
     def display(self, name) -> str:
         """The value as the report prints it ("15.5565"), in r.record(name).unit."""
         return self._report.display(self._index[name])
+
+    def quantity(self, name):
+        """The result as an astropy Quantity in its SI unit (astropy: Debian's python3-astropy)."""
+        i = self._index[name]
+        return float(self.values_si[i]) * _astropy_unit(self.si_units[i])
+
+    def quantities(self) -> dict:
+        """{name: astropy Quantity} for every result."""
+        return {name: self.quantity(name) for name in self.names}
 
     def frame(self):
         pd = _pandas()
@@ -289,6 +307,8 @@ class Description(dict):
             lines.append(f"  {self['summary']}")
             lines.append(f"  physics: {self['reference']}")
             lines.append(f"  file: {self['file']}")
+        elif self["what"] == "command":
+            lines.append(f"radchain {self['name']} options (radchain.{self['name']}: the keys with '_' for '-')")
         else:
             lines.append(f"[{self['name']}]")
         lines.append("keys:")
@@ -311,7 +331,8 @@ class Description(dict):
 
 def describe(name: str) -> Description:
     """A plugin's keys (units, defaults, accepted ranges), what it publishes and needs; a kind's plugins
-    ("criterion"); or a sensor file's own table ("sensor", "solve", "expected")."""
+    ("criterion"); a sensor file's own table ("sensor", "solve", "expected"); or the options of the imaging
+    commands ("render": what radchain.render takes, "validate")."""
     return Description(_radchain.describe(str(name)))
 
 

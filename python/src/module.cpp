@@ -2,6 +2,7 @@
 // Everything here is a thin binding of radchain::core and radchain::batch: a Session owns one Chain built from a
 // sensor file (or its text) with overrides, exactly as `radchain run --set` builds it; sweeps go through
 // PointsEvaluator (radchain/batch/points.hpp) with the GIL released, on all cores.
+#include "option_schema.hpp"  // framework/cli: the render and validate options (describe)
 #include "radchain/batch/budget.hpp"
 #include "radchain/batch/catalogue.hpp"
 #include "radchain/batch/uncertainty.hpp"
@@ -373,6 +374,12 @@ py::dict describe(const std::string& name) {
     d["keys"] = keys_of(name == "sensor" ? sensor_table_schema() : name == "solve" ? solve_entry_schema() : expected_entry_schema());
     return d;
   }
+  if (name == "render" || name == "validate") {  // the imaging commands' options (radchain.render takes render's)
+    d["what"] = "command";
+    d["name"] = name;
+    d["keys"] = keys_of(name == "render" ? cli::render_option_schema() : cli::validate_option_schema());
+    return d;
+  }
   if (auto kind = kind_named(name)) {
     d["what"] = "kind";
     d["name"] = std::string(to_string(*kind));
@@ -399,11 +406,12 @@ py::dict describe(const std::string& name) {
   std::vector<std::string> kind_names;
   for (const KindInfo& k : kinds) kind_names.emplace_back(k.name);
   candidates.insert(candidates.end(), kind_names.begin(), kind_names.end());
-  for (const char* t : {"sensor", "solve", "expected"}) candidates.emplace_back(t);
+  for (const char* t : {"sensor", "solve", "expected", "render", "validate"}) candidates.emplace_back(t);
   const std::string near = nearest_match(name, candidates);
   throw InputError({}, "describe", name,
                    "unknown plugin, kind or table" + (near.empty() ? std::string() : " (did you mean \"" + near + "\"?)") +
-                       "; plugins: " + join(names) + "; kinds: " + join(kind_names) + "; tables: sensor, solve, expected");
+                       "; plugins: " + join(names) + "; kinds: " + join(kind_names) + "; tables: sensor, solve, expected; "
+                       "commands: render, validate");
 }
 
 py::list plugins() {

@@ -28,6 +28,16 @@ def test_describe_kind_and_tables(cli):
     assert [k["key"] for k in solve["keys"]] == ["unknown", "criterion", "bracket"]
 
 
+def test_describe_render_and_validate_list_the_cli_options(cli):
+    for command in ("render", "validate"):
+        d = radchain.describe(command)
+        text = cli("describe", command).stdout
+        assert d["what"] == "command"
+        assert [k["key"] for k in d["keys"]] == re.findall(r"^  (--[\w-]+)\s", text, re.M)
+    width = next(k for k in radchain.describe("render")["keys"] if k["key"] == "--width")
+    assert width["type"] == "integer" and width["default"] == "512"
+
+
 def test_plugins_equal_cli_listing(cli):
     df = radchain.plugins()
     lines = cli("plugins").stdout.splitlines()[2:-1]
