@@ -146,7 +146,8 @@ int main(int argc, char** argv) {
   auto* mtf_cmd = app.add_subcommand("mtf", "MTF curves of a pushbroom design (objective, detector, system) as CSV and a plot");
   cli::add_sensor(mtf_cmd, mtf.sensor);
   mtf_cmd->add_option("--out", mtf.out, "CSV file (default: standard output)");
-  mtf_cmd->add_option("--plot", mtf.plot, "draw the curves to this PNG with gnuplot");
+  mtf_cmd->add_option("--plot", mtf.plot, "draw the curves to this PNG with gnuplot (one panel, Nyquist marked)");
+  mtf_cmd->add_flag("--log", mtf.log, "plot the MTF on a logarithmic axis (1e-3 to 1)");
 
   cli::RenderCommand render;
   auto* render_cmd = app.add_subcommand("render", "render what the sensor sees: a detector frame (point targets) or an Earth scene (pushbroom)");

@@ -101,6 +101,7 @@ struct MtfCommand {
   SensorArgs sensor;
   std::string out;
   std::string plot;
+  bool log = false;  // --log: the plot's MTF axis logarithmic (10^-3 to 1)
 };
 
 // radchain render SENSOR [options]: a point-target sensor (ccd_frame) renders a detector frame, a pushbroom

@@ -58,6 +58,30 @@ unset multiplot
 set output
 )gp";
 
+// Curves in one panel (radchain mtf --plot): fixed text. ARG1 output PNG, ARG2 data file (x, then one column per
+// curve), ARG3 title, ARG4 x label, ARG5 y label, ARG6 the curves' names separated by \037, ARG7 the mark's label.
+// The terminal, the curve count, log_y and mark (NaN: none) are written before it by plot_curves.
+constexpr const char* curves_script = R"gp(set output ARG1
+set datafile missing 'NaN'
+set datafile separator "\t"
+set grid
+set key outside right top
+set title ARG3
+set xlabel ARG4
+set ylabel ARG5
+if (log_y) { set logscale y; set yrange [1e-3:1.05] } else { set yrange [0:1.05] }
+if (mark == mark) { set arrow 1 from mark, graph 0 to mark, graph 1 nohead dt 2 lw 1.5; set label 1 ARG7 at mark, graph 0.96 left offset 0.5, 0 }
+array names[curves]
+labels = ARG6
+do for [i = 1:curves] {
+  cut = strstrt(labels, "\037")
+  names[i] = (cut > 0) ? labels[1:cut - 1] : labels
+  labels = (cut > 0) ? labels[cut + 1:*] : ""
+}
+plot for [i = 1:curves] ARG2 using 1:(column(i + 1)) with lines lw 2 title names[i]
+set output
+)gp";
+
 // The tornado (radchain budget --plot): fixed text. ARG1 output PNG, ARG2 data file (one block per panel, separated
 // by two blank lines: label TAB value, bottom bar first), ARG3 title, ARG4 the x labels separated by \037. The
 // terminal, the panel count and each panel's row count are written before it by plot_tornado.
@@ -238,6 +262,29 @@ void plot_sweep(const std::string& png_path, const std::string& title, const std
         return head;
       },
       plot_script, {plain_text(title), plain_text(x_label), y_labels});
+}
+
+void plot_curves(const std::string& png_path, const std::string& title, const std::string& x_label,
+                 const std::string& y_label, const std::vector<double>& x, const std::vector<PlotSeries>& curves,
+                 const CurveOptions& options) {
+  if (curves.empty()) throw std::runtime_error("nothing to plot");
+  draw(
+      png_path,
+      [&](std::ostream& out) {
+        for (std::size_t i = 0; i < x.size(); ++i) {
+          out << fmt::format("{:.17g}", x[i]);
+          for (const auto& c : curves) out << '\t' << (std::isfinite(c.y[i]) ? fmt::format("{:.17g}", c.y[i]) : "NaN");
+          out << '\n';
+        }
+      },
+      [&](const std::string& terminal) {
+        return fmt::format("set terminal {} noenhanced size 1000,620\ncurves = {}\nlog_y = {}\nmark = {}\n", terminal,
+                           curves.size(), options.log_y ? 1 : 0,
+                           std::isfinite(options.mark_x) ? fmt::format("{:.17g}", options.mark_x) : "NaN");
+      },
+      curves_script,
+      {plain_text(title), plain_text(x_label), plain_text(y_label),
+       joined_labels(curves, [](const PlotSeries& c) { return c.label; }), plain_text(options.mark_label)});
 }
 
 void plot_tornado(const std::string& png_path, const std::string& title, const std::vector<TornadoPanel>& panels) {

@@ -1,5 +1,6 @@
 #pragma once
 // Plots for the command line (sweep --plot, mtf --plot, budget --plot): gnuplot draws them; see plot.cpp for the trust rule.
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,17 @@ struct PlotSeries {
 };
 void plot_sweep(const std::string& png_path, const std::string& title, const std::string& x_label,
                 const std::vector<double>& x, const std::vector<PlotSeries>& series);
+
+// Curves overlaid in one panel with a key (radchain mtf --plot): y from 0 (or 1e-3 on a log axis) to 1.05, and
+// a dashed vertical line at mark_x labelled mark_label (NaN: none).
+struct CurveOptions {
+  bool log_y = false;
+  double mark_x = std::numeric_limits<double>::quiet_NaN();
+  std::string mark_label;
+};
+void plot_curves(const std::string& png_path, const std::string& title, const std::string& x_label,
+                 const std::string& y_label, const std::vector<double>& x, const std::vector<PlotSeries>& curves,
+                 const CurveOptions& options);
 
 // Horizontal bars about zero, one panel per x label (radchain budget --plot). Bars are listed bottom first.
 struct TornadoPanel {

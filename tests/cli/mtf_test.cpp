@@ -53,6 +53,29 @@ TEST(MtfCli, WritesTheBudgetOfAnEarthObservationCamera) {
   EXPECT_NEAR(v[8], diffraction * 2 / pi, 2e-6);
 }
 
+// The budget's plot: every curve in one panel (PNG 1000 × 620: one panel, where a panel per curve was 2620 tall),
+// Nyquist marked; --log draws the MTF axis logarithmic. gnuplot draws either; both are PNGs of the same size.
+TEST(MtfCli, BudgetPlotIsOnePanelLinearOrLog) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot is not installed";
+  const auto dir = std::filesystem::temp_directory_path();
+  for (const char* log : {"", " --log"}) {
+    const auto png = dir / (std::string("radchain_mtf_plot") + (*log ? "_log" : "") + ".png");
+    ASSERT_EQ(run_cli("mtf " RADCHAIN_SOURCE_DIR "/sensors/worldview-2-pan.toml --out /dev/null --plot " + png.string() + log), 0);
+    std::ifstream in(png, std::ios::binary);
+    std::string head(24, '\0');
+    in.read(head.data(), 24);
+    std::filesystem::remove(png);
+    ASSERT_EQ(head.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << log;
+    auto be32 = [&](std::size_t at) {
+      return (static_cast<unsigned>(static_cast<unsigned char>(head[at])) << 24) | (static_cast<unsigned char>(head[at + 1]) << 16) |
+             (static_cast<unsigned char>(head[at + 2]) << 8) | static_cast<unsigned char>(head[at + 3]);
+    };
+    EXPECT_EQ(be32(16), 1000u) << log;  // IHDR width
+    EXPECT_EQ(be32(20), 620u) << log;   // IHDR height: one panel
+  }
+  EXPECT_NE(run_cli("mtf " RADCHAIN_SOURCE_DIR "/sensors/worldview-2-pan.toml --out /dev/null --log --plot /nonexistent/dir/x.png"), 0);
+}
+
 TEST(MtfCli, ASensorWithoutADesignIsBadInput) {
   EXPECT_EQ(run_cli("mtf " RADCHAIN_SOURCE_DIR "/sensors/msx-sbv.toml"), 2);
 }

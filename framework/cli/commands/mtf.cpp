@@ -42,13 +42,16 @@ int budget_command(const MtfCommand& options, const Report& report) {
       for (std::size_t k = 0; k < columns.size(); ++k) columns[k].push_back(values[k]);
     }
     const physics::MtfComponents at_nyquist = physics::mtf_components(curves.budget, curves.nyquist_per_m);
-    plot_sweep(options.plot,
-               fmt::format("{}: MTF budget; Nyquist {:.4g} mm-1 (mid-axis), system MTF {:.3f} there", report.sensor_name,
-                           curves.nyquist_per_m * 1e-3, at_nyquist.system()),
-               "spatial frequency (mm-1)", frequency_mm,
-               {{"diffraction", "", columns[0]}, {"pixel", "", columns[1]}, {"jitter", "", columns[2]},
-                {"smear", "", columns[3]}, {"diffusion", "", columns[4]}, {"wavefront", "", columns[5]},
-                {"TDI", "", columns[6]}, {"system", "", columns[7]}});
+    CurveOptions plot;
+    plot.log_y = options.log;
+    plot.mark_x = curves.nyquist_per_m * 1e-3;
+    plot.mark_label = fmt::format("Nyquist {:.4g} mm-1: system {:.3f}", curves.nyquist_per_m * 1e-3, at_nyquist.system());
+    plot_curves(options.plot, report.sensor_name + ": MTF budget (" + curves.criterion + ")", "spatial frequency (mm-1)",
+                "MTF", frequency_mm,
+                {{"diffraction", "", columns[0]}, {"pixel", "", columns[1]}, {"jitter", "", columns[2]},
+                 {"smear", "", columns[3]}, {"diffusion", "", columns[4]}, {"wavefront", "", columns[5]},
+                 {"TDI", "", columns[6]}, {"system", "", columns[7]}},
+                plot);
   }
   return report.all_passed() ? 0 : 1;
 }
@@ -67,14 +70,17 @@ int mtf_command(const MtfCommand& options) {
   if (!options.plot.empty()) {
     std::vector<double> frequency_mm;
     for (double nu : curves.frequency_per_m) frequency_mm.push_back(nu * 1e-3);
-    plot_sweep(options.plot,
-               fmt::format("{}: MTF at {:.3g} um, f/{:.3g}, eta = {:.3g}", report.sensor_name, curves.wavelength_m * 1e6,
-                           curves.f_number, curves.eta),
-               "spatial frequency (mm-1)", frequency_mm,
-               {{"diffraction-limited objective", "", curves.diffraction},
-                {"objective, eq. (7)", "", curves.objective},
-                {"detector element, eq. (8)", "", curves.detector},
-                {"system, eq. (10)", "", curves.system}});
+    CurveOptions plot;  // Kolobrodov's chain has no pixel Nyquist of its own (the element is 1.49 pitches): no mark
+    plot.log_y = options.log;
+    plot_curves(options.plot,
+                fmt::format("{}: MTF at {:.3g} um, f/{:.3g}, eta = {:.3g}", report.sensor_name, curves.wavelength_m * 1e6,
+                            curves.f_number, curves.eta),
+                "spatial frequency (mm-1)", "MTF", frequency_mm,
+                {{"diffraction-limited objective", "", curves.diffraction},
+                 {"objective, eq. (7): the paper's linear model", "", curves.objective},
+                 {"detector element, eq. (8)", "", curves.detector},
+                 {"system, eq. (10)", "", curves.system}},
+                plot);
   }
   return report.all_passed() ? 0 : 1;
 }
