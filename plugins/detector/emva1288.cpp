@@ -59,6 +59,7 @@
 // fill. Limits: τ is the optics' scalar transmittance (a transmittance_curve is folded into the scene spectrum
 // and then weights the scene's L̄ as well); on axis (no cos⁴ fall-off); path radiance not in the signal.
 #include "radchain/physics/emva1288.hpp"
+#include "radchain/physics/magnitudes.hpp"
 #include "radchain/physics/photometry.hpp"
 #include "radchain/physics/psf.hpp"
 #include "radchain/physics/streak.hpp"
@@ -72,8 +73,6 @@
 
 namespace {
 using namespace radchain;
-
-constexpr double ab_zero_f_nu = 3631e-26;  // W m-2 Hz-1 (Oke & Gunn 1983: m_AB = -2.5 lg f_ν - 48.60, cgs)
 
 const Schema& schema() {
   static const Schema s = {
@@ -188,11 +187,9 @@ class Emva1288 final : public Stage {
     }
     // EMVA eq. 1 in spectral form: photoelectrons per second per unit signal scale.
     photon_rate_per_scale_ = physics::photon_rate(signal.spectrum, lo, hi, qe_curve);
-    // AB magnitude 0 (flat f_ν = 3631 Jy) through this detector: n_λ = f_ν/(hλ), electrons s-1 m-2 (times qe).
-    const Spectrum ab = Spectrum::sampled(
-        Eigen::ArrayXd::LinSpaced(2001, lo, hi),
-        [](double l) { return ab_zero_f_nu * constants::speed_of_light_m_s / (l * l); }, "W m-2 m-1");
-    ab_electrons_per_m2_s_ = physics::photon_rate(ab, lo, hi, qe_curve);
+    // AB magnitude 0 (flat f_ν of m_AB = −2.5 lg f_ν − 48.60, 3630.78 Jy: magnitudes.hpp, as the sky and the targets
+    // use it) through this detector: n_λ = f_ν/(hλ), electrons s-1 m-2 (times qe).
+    ab_electrons_per_m2_s_ = physics::photon_rate(physics::ab_reference_spectrum(lo, hi), lo, hi, qe_curve);
 
     psf_wavelength_ = c.find(vocabulary::optics_psf_wavelength);
     gaussian_fwhm_ = c.find(vocabulary::optics_gaussian_fwhm);
