@@ -171,6 +171,15 @@ YRange y_range(const std::vector<double>& y) {
   return {true, mean - half, mean + half};
 }
 
+// The data file of a sweep or of curves: x, then one column per series (NaN where not finite), tab-separated.
+void write_columns(std::ostream& out, const std::vector<double>& x, const std::vector<PlotSeries>& series) {
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    out << fmt::format("{:.17g}", x[i]);
+    for (const auto& s : series) out << '\t' << (std::isfinite(s.y[i]) ? fmt::format("{:.17g}", s.y[i]) : "NaN");
+    out << '\n';
+  }
+}
+
 // Runs `gnuplot -c script args…` without a shell, its output into `log`. Returns false when gnuplot fails;
 // throws when it cannot be started at all.
 bool run_gnuplot(const std::vector<std::string>& arguments, const fs::path& log) {
@@ -244,13 +253,7 @@ void plot_sweep(const std::string& png_path, const std::string& title, const std
   const std::string y_labels = joined_labels(series, [](const PlotSeries& s) { return label(s.label, s.unit); });
   draw(
       png_path,
-      [&](std::ostream& out) {
-        for (std::size_t i = 0; i < x.size(); ++i) {
-          out << fmt::format("{:.17g}", x[i]);
-          for (const auto& s : series) out << '\t' << (std::isfinite(s.y[i]) ? fmt::format("{:.17g}", s.y[i]) : "NaN");
-          out << '\n';
-        }
-      },
+      [&](std::ostream& out) { write_columns(out, x, series); },
       [&](const std::string& terminal) {
         std::string head = fmt::format("set terminal {} noenhanced size 900,{}\n", terminal, series.size() * 320 + 60);
         head += fmt::format("panels = {}\narray fixed[{}]\narray low[{}]\narray high[{}]\n", series.size(), series.size(),
@@ -270,13 +273,7 @@ void plot_curves(const std::string& png_path, const std::string& title, const st
   if (curves.empty()) throw std::runtime_error("nothing to plot");
   draw(
       png_path,
-      [&](std::ostream& out) {
-        for (std::size_t i = 0; i < x.size(); ++i) {
-          out << fmt::format("{:.17g}", x[i]);
-          for (const auto& c : curves) out << '\t' << (std::isfinite(c.y[i]) ? fmt::format("{:.17g}", c.y[i]) : "NaN");
-          out << '\n';
-        }
-      },
+      [&](std::ostream& out) { write_columns(out, x, curves); },
       [&](const std::string& terminal) {
         return fmt::format("set terminal {} noenhanced size 1000,620\ncurves = {}\nlog_y = {}\nmark = {}\n", terminal,
                            curves.size(), options.log_y ? 1 : 0,

@@ -197,30 +197,17 @@ void write_fits(const std::string& path, const Image& image, const Header& heade
   fitsfile* fits = nullptr;
   const std::string target = "!" + file.temporary_path();  // '!': replace an existing file
   if (fits_create_file(&fits, target.c_str(), &status)) fits_failure("cannot write", path, status);
-  long axes[2] = {image.width, image.height};
-  const LONGLONG count = static_cast<LONGLONG>(image.size());
+  // The primary image (BITPIX from the pixel type), then the cards, then the rows bottom-up.
+  auto write = [&](int bitpix, int datatype, auto values) {
+    long axes[2] = {image.width, image.height};
+    fits_create_img(fits, bitpix, 2, axes, &status);
+    for (const auto& r : records) fits_write_record(fits, r.c_str(), &status);
+    fits_write_img(fits, datatype, 1, static_cast<LONGLONG>(values.size()), values.data(), &status);
+  };
   switch (pixel) {
-    case FitsPixel::int16: {
-      auto values = fits_rows(image, integers<std::int16_t>(image));
-      fits_create_img(fits, SHORT_IMG, 2, axes, &status);
-      for (const auto& r : records) fits_write_record(fits, r.c_str(), &status);
-      fits_write_img(fits, TSHORT, 1, count, values.data(), &status);
-      break;
-    }
-    case FitsPixel::int32: {
-      auto values = fits_rows(image, integers<std::int32_t>(image));
-      fits_create_img(fits, LONG_IMG, 2, axes, &status);
-      for (const auto& r : records) fits_write_record(fits, r.c_str(), &status);
-      fits_write_img(fits, TINT, 1, count, values.data(), &status);
-      break;
-    }
-    case FitsPixel::float32: {
-      auto values = fits_rows(image, image.pixels);
-      fits_create_img(fits, FLOAT_IMG, 2, axes, &status);
-      for (const auto& r : records) fits_write_record(fits, r.c_str(), &status);
-      fits_write_img(fits, TFLOAT, 1, count, values.data(), &status);
-      break;
-    }
+    case FitsPixel::int16: write(SHORT_IMG, TSHORT, fits_rows(image, integers<std::int16_t>(image))); break;
+    case FitsPixel::int32: write(LONG_IMG, TINT, fits_rows(image, integers<std::int32_t>(image))); break;
+    case FitsPixel::float32: write(FLOAT_IMG, TFLOAT, fits_rows(image, image.pixels)); break;
   }
   int closing = 0;
   fits_close_file(fits, &closing);
