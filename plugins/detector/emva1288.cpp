@@ -63,6 +63,7 @@
 #include "radchain/physics/photometry.hpp"
 #include "radchain/physics/psf.hpp"
 #include "radchain/physics/streak.hpp"
+#include "radchain/curve_components.hpp"
 #include "radchain/plugin.hpp"
 
 #include <algorithm>
@@ -78,7 +79,9 @@ const Schema& schema() {
   static const Schema s = {
       number("qe", "0.6").fallback("1").above(0).at_most(1)
           .described("quantum efficiency η (EMVA 1288 §2.1; multiplies any qe_curve)"),
-      spectrum_file("qe_curve", "1", "cmos_sony_imx428_mono_qe.csv").described("spectral quantum efficiency η(λ)"),
+      spectrum_file("qe_curve", "1", "cmos_sony_imx428_mono_qe.csv").as_list()
+          .described("spectral quantum efficiency η(λ): one table, or a list (window, filter, sensor QE) multiplied; "
+                     "each component's mean over the band is a result"),
       quantity("band_min", "m", "0.4 um").needed().above(0).affects_spectrum().described("detector band lower limit"),
       quantity("band_max", "m", "0.9 um").needed().above(0).affects_spectrum().described("detector band upper limit"),
       quantity("integration_time", "s", "10 ms").needed().above(0)
@@ -181,6 +184,7 @@ class Emva1288 final : public Stage {
     if (qe_curve && (lo < qe_curve->min_wavelength_m() || hi > qe_curve->max_wavelength_m()))
       params_.reject(lo < qe_curve->min_wavelength_m() ? "band_min" : "band_max",
                      "the band reaches outside the qe_curve's table (" + nm_range(*qe_curve) + "): it would count 0 there");
+    qe_components_ = declare_component_means(c, params_, "qe_curve", lo, hi);  // curve_components.hpp
     if (extended_) {
       prepare_extended(c, lo, hi, qe_curve);
       return;
@@ -276,6 +280,7 @@ class Emva1288 final : public Stage {
   }
 
   void evaluate(Context& c) override {
+    for (const ComponentMean& m : qe_components_) c.results.set(m.id, m.mean);
     if (extended_) {
       evaluate_extended(c);
       return;
@@ -515,6 +520,7 @@ class Emva1288 final : public Stage {
   const double *qe_, *time_, *gain_, *dark_noise_, *saturation_, *dark_current_, *prnu_, *dsnu_, *other_, *bits_,
       *binning_, *exposures_, *tdi_, *pitch_, *window_, *ensquared_;
   bool psf_photometry_, circle_photometry_;
+  std::vector<ComponentMean> qe_components_;
   const double *aperture_radius_, *jitter_, *rate_;
   bool moving_, rate_tracking_;
   ResultId id_bits_{}, id_dark_rate_{}, id_read_pixel_{}, id_target_streak_{}, id_star_streak_{}, id_streak_angle_{}, id_static_neff_{}, id_trailing_loss_{};

@@ -7,6 +7,7 @@
 // of a star's energy in one pixel): psf = "airy" (diffraction-limited annular pupil at psf_wavelength, needs
 // focal_length) or "gaussian" (FWHM on the focal plane). See docs/physics/ensquared-energy-and-background.md.
 #include "radchain/physics/psf.hpp"
+#include "radchain/curve_components.hpp"
 #include "radchain/plugin.hpp"
 
 #include <cmath>
@@ -22,8 +23,10 @@ const Schema& schema() {
           .described("central obscuration, linear ratio ε (collecting area × (1 - ε²))"),
       number("transmittance", "0.56").fallback("1").above(0).at_most(1)
           .described("optical transmittance τ (in-band average; multiplies any transmittance_curve)"),
-      spectrum_file("transmittance_curve", "1", "optics_transmittance.csv")
-          .described("spectral transmittance τ(λ), multiplied into the signal spectrum"),
+      spectrum_file("transmittance_curve", "1", "lsst_m1_throughputs1.9.csv").as_list()
+          .described("spectral transmittance τ(λ): one table, or a list of the components' tables (mirror "
+                     "coatings, lenses, window, filter), multiplied into the signal spectrum; each component's mean "
+                     "is a result"),
       quantity("focal_length", "m", "832 mm").above(0).at_most(1000).scales(Scaling::power_law)
           .described("effective focal length f' (needed for extended scenes and pixel geometry)"),
       choice("psf", {"none", "airy", "gaussian"}).fallback("none")
@@ -92,6 +95,14 @@ class Telescope final : public LaneStage<Telescope> {
                                   "Born & Wolf §8.5.2)", "um");
     }
     if (gaussian_) id_gaussian_fwhm_ = c.declare(vocabulary::optics_gaussian_fwhm, "input FWHM of the Gaussian PSF", "um");
+    // Each component of the curve and their product as band means (curve_components.hpp): over the source's
+    // reporting band when it has one, else over the product's own passband (≥ 1 % of its peak).
+    if (params_.has("transmittance_curve")) {
+      const auto [lo, hi] = c.light.has_report_band()
+                                ? std::pair{c.light.report_band_min_m, c.light.report_band_max_m}
+                                : passband_m(params_.spectrum("transmittance_curve"));
+      components_ = declare_component_means(c, params_, "transmittance_curve", lo, hi);
+    }
     if (auto lux = c.find(vocabulary::target_illuminance))
       target_lux_ = *lux, id_flux_ = c.declare("luminous_flux", "lm", "Pan 2010 eq. (2): F = π D² E_t / 4", "lm");
   }
@@ -131,6 +142,7 @@ class Telescope final : public LaneStage<Telescope> {
     }
     if (gaussian_) a.set(id_gaussian_fwhm_, a.param(gaussian_fwhm_));
     if (target_lux_ && a.full_detail()) a.set(id_flux_, std::numbers::pi / 4.0 * d * d * a.value(*target_lux_));
+    for (const ComponentMean& m : components_) a.set(m.id, broadcast<V>(m.mean));
   }
 
   double first_dark_ring_v(double eps) {
@@ -145,6 +157,7 @@ class Telescope final : public LaneStage<Telescope> {
   RadiationForm form_ = RadiationForm::none;
   bool has_focal_length_ = false;  // read once per spectral phase: evaluate() does no lookups by name
   std::optional<ResultId> target_lux_;
+  std::vector<ComponentMean> components_;
   ResultId id_area_{}, id_aperture_{}, id_transmittance_{}, id_focal_{}, id_f_number_{}, id_flux_{}, id_obscuration_{},
       id_psf_wavelength_{}, id_airy_radius_{}, id_gaussian_fwhm_{};
 };

@@ -47,6 +47,7 @@ const Case cases[] = {
     {"bad_choice"},
     {"plugin_consistency_rule"},
     {"missing_spectrum_file"},
+    {"curve_list_missing_file"},
     {"csv_no_unit_header"},
     {"csv_value_without_unit"},
     {"csv_wrong_dimension"},

@@ -56,6 +56,14 @@ const Shipped shipped[] = {
     {"lsst_hardware_u_throughputs1.9.csv", "1"},
     {"lsst_hardware_z_throughputs1.9.csv", "1"},
     {"lsst_hardware_y_throughputs1.9.csv", "1"},
+    {"lsst_m1_throughputs1.9.csv", "1"},
+    {"lsst_m2_throughputs1.9.csv", "1"},
+    {"lsst_m3_throughputs1.9.csv", "1"},
+    {"lsst_lens1_throughputs1.9.csv", "1"},
+    {"lsst_lens2_throughputs1.9.csv", "1"},
+    {"lsst_lens3_throughputs1.9.csv", "1"},
+    {"lsst_filter_r_throughputs1.9.csv", "1"},
+    {"lsst_detector_throughputs1.9.csv", "1"},
     {"lsst_darksky_throughputs1.9.csv", "W m-2 sr-1 m-1"},
 };
 

@@ -269,6 +269,35 @@ TEST(Emva1288Chain, CircleAndJitterRules) {
   refused("jitter = \"-1 arcsec\"\n", "jitter");
 }
 
+// Throughput as a list of curves (issue 13 item 2): the Rubin r hardware as its eight components (mirrors and
+// lenses in the optics, filter and CCD in the detector) gives sensors/rubin-lsst-r-m5.toml's m5 and zero point
+// (hardware_r.dat is their product to 7e-16; the component tables carry 9 significant digits), and each
+// component's band mean is a result equal to the trapezoid of its table by hand.
+TEST(Emva1288Chain, ThroughputComponentsEqualTheHardwareCurve) {
+  Chain hardware = load_sensor(sensors + "rubin-lsst-r-m5.toml");
+  Chain components = load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/examples/rubin-lsst-r-components.toml");
+  const Report a = hardware.run(), b = components.run();
+  ASSERT_TRUE(a.solves.at(0).converged && b.solves.at(0).converged);
+  EXPECT_NEAR(b.solves.at(0).value_si, a.solves.at(0).value_si, 1e-6);
+  EXPECT_NEAR(b.value("detector.instrumental_zero_point").value(), a.value("detector.instrumental_zero_point").value(), 1e-6);
+  auto band_mean = [&](const std::string& file) {  // ∫ τ dλ / 500 nm over 400-900 nm by the trapezoid rule
+    const Spectrum s = load_spectrum_csv(spectra + file, "1").spectrum;
+    double sum = 0;
+    for (Eigen::Index i = 1; i < s.size(); ++i)
+      sum += 0.5 * (s.value()(i) + s.value()(i - 1)) * (s.wavelength_m()(i) - s.wavelength_m()(i - 1));
+    return sum / 500e-9;
+  };
+  EXPECT_NEAR(b.value("optics.transmittance_curve_1").value(), band_mean("lsst_m1_throughputs1.9.csv"), 1e-12);
+  EXPECT_NEAR(b.value("optics.transmittance_curve_6").value(), band_mean("lsst_lens3_throughputs1.9.csv"), 1e-12);
+  EXPECT_NEAR(b.value("detector.qe_curve_1").value(), band_mean("lsst_filter_r_throughputs1.9.csv"), 1e-12);
+  EXPECT_NEAR(b.value("detector.qe_curve_2").value(), band_mean("lsst_detector_throughputs1.9.csv"), 1e-12);
+  // The products: the detector's is the mean of filter × CCD, the hardware curve's share after the optics.
+  EXPECT_LT(b.value("detector.qe_curve_product").value(), b.value("detector.qe_curve_1").value());
+  EXPECT_FALSE(a.value("optics.transmittance_curve_1"));  // no curve, no component results
+  EXPECT_TRUE(a.value("detector.qe_curve_1"));           // one table: itself, no product
+  EXPECT_FALSE(a.value("detector.qe_curve_product"));
+}
+
 // Moving targets (physics/streak.hpp): a target at 20 µrad/s on 1 m focal length trails 20 µm = 4 pixels in 1 s.
 // Sidereal tracking: n_eff of the streaked PSF (FWHM 2 px) enters the noise; rate tracking and a zero rate give
 // the static chain's numbers exactly; the trailing loss is 1.25 lg(n_eff ratio).

@@ -239,7 +239,9 @@ void assign_one(Params& params, Params::Entry& entry, const ConfigValue& value, 
     case ParamType::spectrum: {
       if (value.type != ConfigValue::Type::string) throw fail(spec.expected_text());
       const auto path = resolve_data_file(value.string_value, context.sensor_file);
-      if (!path) throw fail("file not found (looked beside the sensor file, in RADCHAIN_DATA_PATH and in spectra/)");
+      if (!path)  // in a list, which item
+        throw fail((spec.shape == ParamShape::scalar ? "" : "\"" + value.string_value + "\": ") +
+                   "file not found (looked beside the sensor file, in RADCHAIN_DATA_PATH and in spectra/)");
       try {
         entry.spectrum = std::make_shared<const Spectrum>(cached_spectrum_csv(*path, spec.si_unit).spectrum);
       } catch (const InputError& error) {
@@ -267,11 +269,15 @@ void assign_param(Params& params, Params::Entry& entry, const ConfigValue& value
     if (array && value.items.empty())
       throw InputError(value.where, params.context(), subject, fmt::format("expected one or more values, e.g. [{}]", spec.example));
     entry.numbers.clear(), entry.texts.clear();
+    std::shared_ptr<const Spectrum> product;  // a list of spectra: their product (components of one stage)
     for (const ConfigValue& item : array ? value.items : std::vector<ConfigValue>{value}) {
       assign_one(params, entry, item, context, subject);
       entry.numbers.push_back(entry.number);
       entry.texts.push_back(entry.text);
+      if (spec.type == ParamType::spectrum)
+        product = product ? std::make_shared<const Spectrum>(product->product(*entry.spectrum, spec.si_unit)) : entry.spectrum;
     }
+    if (product) entry.spectrum = product;
   }
   entry.present = true;
 }
