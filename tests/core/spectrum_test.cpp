@@ -1,6 +1,7 @@
 // Spectrum (framework/include/radchain/spectrum.hpp): linear interpolation, the two extrapolation rules, and
 // the band integrals, checked against values worked by hand and closed-form integrals of linear functions.
 #include "radchain/constants.hpp"
+#include "radchain/curve_components.hpp"
 #include "radchain/spectrum.hpp"
 
 #include <gtest/gtest.h>
@@ -147,6 +148,19 @@ TEST(Spectrum, UnionGridIsSortedAndClipped) {
   const Eigen::ArrayXd expected = array({1.2e-6, 1.5e-6, 2e-6, 2.5e-6, 2.7e-6});
   ASSERT_EQ(grid.size(), expected.size());
   for (Eigen::Index i = 0; i < grid.size(); ++i) EXPECT_EQ(grid(i), expected(i)) << i;
+}
+
+// passband_m (curve_components.hpp): the first and last grid points at ≥ 1 % of the peak; a curve that never
+// drops below it is its whole table.
+TEST(CurveComponents, PassbandIsWhereTheCurveReachesOnePercentOfItsPeak) {
+  Eigen::ArrayXd w(7), v(7);
+  w << 400e-9, 450e-9, 500e-9, 550e-9, 600e-9, 650e-9, 700e-9;
+  v << 0.001, 0.005, 0.2, 0.9, 0.5, 0.0095, 0.0;
+  const auto [lo, hi] = passband_m(Spectrum(w, v, "1"));
+  EXPECT_EQ(lo, 500e-9);  // 0.005 < 0.009 = 1 % of 0.9 ≤ 0.2
+  EXPECT_EQ(hi, 650e-9);  // 0.0095 ≥ 0.009
+  Eigen::ArrayXd flat = Eigen::ArrayXd::Constant(7, 0.9);
+  EXPECT_EQ(passband_m(Spectrum(w, flat, "1")), std::make_pair(400e-9, 700e-9));
 }
 
 }  // namespace
