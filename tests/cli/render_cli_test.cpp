@@ -35,6 +35,24 @@ struct BadOption {
   std::string arguments, message;
 };
 
+// A scene file that cannot be read (not an image, a truncated FITS, missing) is input refused at --scene: one
+// line, exit 2, no output — not an internal error.
+TEST(RenderCli, UnreadableSceneIsBadInput) {
+  Scratch scratch;
+  const std::string fits = (scratch / "garbage.fits").string(), png = (scratch / "garbage.png").string();
+  write_text(fits, "SIMPLE  =                    T   but nothing a FITS reader can use");
+  write_text(png, "not a PNG");
+  for (const std::string& scene : {fits, png, (scratch / "missing.png").string()}) {
+    const std::string out = (scratch / "scene.fits").string();
+    const CliResult r = run_cli(scratch, "render '" + kolobrodov_file + "' --scene '" + scene +
+                                             "' --scene-sampling \"1 m\" --out '" + out + "'");
+    EXPECT_EQ(r.exit_code, 2) << scene << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("--scene: " + scene + ": cannot read", 0), 0u) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
 TEST(RenderCli, OptionValuesAreValidatedByTheirSchema) {
   Scratch scratch;
   const std::vector<BadOption> cases = {

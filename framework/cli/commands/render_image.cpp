@@ -119,7 +119,13 @@ RenderedImage render_earth(Chain& chain, const Report& report, const RenderReque
     const auto sampling = v.maybe("--scene-sampling");
     if (!sampling) bad_option("--scene-sampling", "", "give the ground size of one pixel of " + c.scene + ", e.g. \"1.25 m\"");
     o.input_sampling_m = *sampling;
-    map = read_reflectance_map(c.scene);
+    try {  // a scene file is input: one that cannot be read is refused at --scene (exit 2), not an internal error
+      map = read_reflectance_map(c.scene);
+    } catch (const std::runtime_error& error) {
+      bad_option("--scene", c.scene, error.what());
+    } catch (const std::invalid_argument& error) {
+      bad_option("--scene", c.scene, error.what());
+    }
   }
   const EarthSceneSetup s = earth_scene_setup(chain, report, o);
   RenderedImage out;
