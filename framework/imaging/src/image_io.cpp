@@ -192,22 +192,32 @@ void write_fits(const std::string& path, const Image& image, const Header& heade
       if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';  // printable ASCII only
     records.push_back(record.substr(0, 80));
   }
+  // The rows too, bottom-up in the pixel type: a value the type cannot hold is refused before the file is
+  // opened (an exception between fits_create_file and fits_close_file leaked CFITSIO's handle).
+  std::vector<std::int16_t> rows16;
+  std::vector<std::int32_t> rows32;
+  std::vector<float> rows_float;
+  switch (pixel) {
+    case FitsPixel::int16: rows16 = fits_rows(image, integers<std::int16_t>(image)); break;
+    case FitsPixel::int32: rows32 = fits_rows(image, integers<std::int32_t>(image)); break;
+    case FitsPixel::float32: rows_float = fits_rows(image, image.pixels); break;
+  }
   AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
   int status = 0;
   fitsfile* fits = nullptr;
   const std::string target = "!" + file.temporary_path();  // '!': replace an existing file
   if (fits_create_file(&fits, target.c_str(), &status)) fits_failure("cannot write", path, status);
-  // The primary image (BITPIX from the pixel type), then the cards, then the rows bottom-up.
-  auto write = [&](int bitpix, int datatype, auto values) {
+  // The primary image (BITPIX from the pixel type), then the cards, then the rows; nothing here throws.
+  auto write = [&](int bitpix, int datatype, auto& values) {
     long axes[2] = {image.width, image.height};
     fits_create_img(fits, bitpix, 2, axes, &status);
     for (const auto& r : records) fits_write_record(fits, r.c_str(), &status);
     fits_write_img(fits, datatype, 1, static_cast<LONGLONG>(values.size()), values.data(), &status);
   };
   switch (pixel) {
-    case FitsPixel::int16: write(SHORT_IMG, TSHORT, fits_rows(image, integers<std::int16_t>(image))); break;
-    case FitsPixel::int32: write(LONG_IMG, TINT, fits_rows(image, integers<std::int32_t>(image))); break;
-    case FitsPixel::float32: write(FLOAT_IMG, TFLOAT, fits_rows(image, image.pixels)); break;
+    case FitsPixel::int16: write(SHORT_IMG, TSHORT, rows16); break;
+    case FitsPixel::int32: write(LONG_IMG, TINT, rows32); break;
+    case FitsPixel::float32: write(FLOAT_IMG, TFLOAT, rows_float); break;
   }
   int closing = 0;
   fits_close_file(fits, &closing);
@@ -264,6 +274,14 @@ ImageFile read_fits(const std::string& path) {
   if (!status && (naxis != 2 || axes[0] < 1 || axes[1] < 1)) {
     fits_close_file(fits, &status);
     throw std::runtime_error("cannot read \"" + path + "\": not a 2-D image (NAXIS = " + std::to_string(naxis) + ")");
+  }
+  // A header may claim any size; the frames radchain reads are at most 16384 pixels a side (render's limit), so a
+  // larger claim is refused before anything is allocated (and the handle is closed: no throw while it is open).
+  constexpr long max_side_px = 16384;
+  if (!status && (axes[0] > max_side_px || axes[1] > max_side_px)) {
+    fits_close_file(fits, &status);
+    throw std::runtime_error("cannot read \"" + path + "\": " + std::to_string(axes[0]) + " x " + std::to_string(axes[1]) +
+                             " pixels: at most 16384 a side");
   }
   ImageFile file;
   file.format = "fits";
