@@ -130,7 +130,8 @@ int main(int argc, char** argv) {
   cli::add_sensor(uncertainty_cmd, uncertainty.sensor);
   uncertainty_cmd->add_option("--vary", uncertainty.vary,
                               "an input's distribution in its units: key=normal(mean, sd) | uniform(lo, hi) | lognormal(mean, sd) | "
-                              "triangular(lo, mode, hi) (repeatable; adds to or replaces the file's [uncertainty])");
+                              "triangular(lo, mode, hi) | truncated(<one of these>, lo, hi) (repeatable; adds to or replaces the "
+                              "file's [uncertainty])");
   uncertainty_cmd->add_option("--results", uncertainty.results, "results (comma-separated), e.g. target.magnitude")
       ->delimiter(',')
       ->required();

@@ -4,6 +4,7 @@
 #include "radchain/batch/uncertainty.hpp"
 #include "radchain/error.hpp"
 
+#include <boost/math/special_functions/erf.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -39,6 +40,44 @@ TEST(Uncertainty, DistributionMomentsFromQuantiles) {
   EXPECT_NE(sample_uniform(7, 3, 1), sample_uniform(8, 3, 1));
 }
 
+// A truncated normal's moments against its closed form (Johnson, Kotz & Balakrishnan 1994, §10.1):
+// with α = (lo − μ)/σ, β = (hi − μ)/σ, Z = Φ(β) − Φ(α),
+//   mean = μ + σ (φ(α) − φ(β))/Z,   var = σ² [1 + (αφ(α) − βφ(β))/Z − ((φ(α) − φ(β))/Z)²];
+// and a truncated uniform is the uniform on the overlap. Every quantile lies in [lo, hi].
+TEST(Uncertainty, TruncatedDistributionsMomentsAndRange) {
+  using K = Distribution::Kind;
+  const double pi = std::numbers::pi;
+  auto phi = [&](double z) { return std::exp(-z * z / 2) / std::sqrt(2 * pi); };
+  auto Phi = [](double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); };
+  struct Case {
+    double mu, sigma, lo, hi;
+  };
+  for (const Case& k : {Case{0.99, 0.02, 0.0, 1.0}, Case{0.56, 0.02, 0.55, 0.60}, Case{10, 3, -1, 12}, Case{0, 1, 2, 3}}) {
+    Distribution d{K::normal, k.mu, k.sigma, 0};
+    const double a = (k.lo - k.mu) / k.sigma, b = (k.hi - k.mu) / k.sigma, z = Phi(b) - Phi(a);
+    EXPECT_NEAR(d.truncate(k.lo, k.hi), z, 1e-14);
+    const double mean = k.mu + k.sigma * (phi(a) - phi(b)) / z;
+    const double var = k.sigma * k.sigma * (1 + (a * phi(a) - b * phi(b)) / z - std::pow((phi(a) - phi(b)) / z, 2));
+    EXPECT_NEAR(d.mean(), mean, 1e-12 * std::max(1.0, std::abs(mean))) << k.mu << " " << k.lo;
+    EXPECT_NEAR(d.sd(), std::sqrt(var), 1e-10 * std::sqrt(var)) << k.mu << " " << k.lo;
+    for (double u : {1e-12, 0.01, 0.5, 0.99, 1 - 1e-12}) {
+      EXPECT_GE(d.quantile(u), k.lo);
+      EXPECT_LE(d.quantile(u), k.hi);
+    }
+    EXPECT_NEAR(d.quantile(0.5), k.mu + k.sigma * (-std::numbers::sqrt2 * boost::math::erfc_inv(Phi(a) + Phi(b))), 1e-12 * std::max(1.0, std::abs(k.mu)));
+  }
+  Distribution u{K::uniform, 2, 5, 0};
+  EXPECT_NEAR(u.truncate(3, 9), 2.0 / 3, 1e-15);
+  EXPECT_NEAR(u.mean(), 4, 1e-13);
+  EXPECT_NEAR(u.sd(), 2 / std::sqrt(12.0), 1e-13);
+  Distribution outside{K::uniform, 2, 5, 0};
+  EXPECT_EQ(outside.truncate(6, 7), 0);  // no probability in the interval: not truncated, the parser refuses it
+  EXPECT_FALSE(outside.truncated);
+  Distribution far{K::normal, 0.56, 0.02, 0};
+  EXPECT_LT(far.truncate(0.7, 0.8), Distribution::least_truncated_probability);  // 7σ out: 1.3e-12
+  EXPECT_FALSE(far.truncated);
+}
+
 UncertaintyOptions sbv_options(std::vector<std::string> vary, std::vector<std::string> results, std::size_t samples) {
   UncertaintyOptions o;
   o.sensor_file = sbv_file;
@@ -47,6 +86,21 @@ UncertaintyOptions sbv_options(std::vector<std::string> vary, std::vector<std::s
   o.samples = samples;
   o.seed = 42;
   return o;
+}
+
+// truncated(normal(0.99, 0.02), 0, 1) keeps every sample of a transmittance in range (none is left out), and the
+// Monte Carlo mean of the input equals the truncated law's (4 standard errors).
+TEST(Uncertainty, TruncationKeepsSamplesInRange) {
+  UncertaintyOptions o = sbv_options({"optics.transmittance=truncated(normal(0.99, 0.02), 0, 1)"}, {"optics.transmittance"}, 4000);
+  const Uncertainty u = run_uncertainty(o);
+  EXPECT_EQ(u.out_of_range, 0u);
+  EXPECT_EQ(u.used, 4000u);
+  Distribution d{Distribution::Kind::normal, 0.99, 0.02, 0};
+  d.truncate(0, 1);
+  const ResultStatistics& s = u.results.at(0);
+  EXPECT_NEAR(s.mean, d.mean(), 4 * d.sd() / std::sqrt(4000.0));
+  EXPECT_LE(s.p95, 1.0);
+  EXPECT_NEAR(s.sd, d.sd(), 4 * d.sd() / std::sqrt(2 * 4000.0));
 }
 
 // S ∝ t (forward only): S = S₀ t/t₀ is linear, so the linear propagation is exact (S₀ σ_t/t₀), the correlation is 1,
@@ -64,6 +118,30 @@ TEST(Uncertainty, LinearChainMatchesLinearPropagation) {
   EXPECT_NEAR(s.sd, sd, 4 * sd / std::sqrt(2 * 4000.0));
   EXPECT_NEAR(s.p50, S0, 4 * 1.2533 * sd / std::sqrt(4000.0));
   EXPECT_NEAR(s.p95 - s.p5, 2 * 1.6449 * sd, 0.05 * 2 * 1.6449 * sd);
+}
+
+// A product of independent log-normal factors is log-normal (Aitchison & Brown 1957, §2.6): S ∝ τ η t (forward,
+// the point target), so with τ, η, t log-normal of means equal to the file's values and coefficients of variation
+// v_i, S has mean S₀, sd S₀ √(Π(1 + v_i²) − 1), median S₀ / √Π(1 + v_i²), and ln S is normal with variance
+// s² = Σ ln(1 + v_i²), so its 5/95 % points are the median × exp(∓1.6449 s). Monte Carlo within 4 standard errors.
+TEST(Uncertainty, ProductOfLognormalFactorsIsLognormal) {
+  UncertaintyOptions o = sbv_options({"optics.transmittance=lognormal(0.56, 0.028)", "detector.qe=lognormal(0.27, 0.027)",
+                                      "detector.integration_time=lognormal(0.625 s, 50 ms)"},
+                                     {"detector.signal_electrons"}, 20000);
+  o.no_solve = true;
+  const Uncertainty u = run_uncertainty(o);
+  ASSERT_EQ(u.used, 20000u);
+  const ResultStatistics& r = u.results.at(0);
+  const double S0 = r.nominal;
+  double growth = 1, s2 = 0;
+  for (double v : {0.05, 0.1, 0.08}) growth *= 1 + v * v, s2 += std::log1p(v * v);
+  const double sd = S0 * std::sqrt(growth - 1), median = S0 / std::sqrt(growth), n = 20000;
+  EXPECT_NEAR(r.mean, S0, 4 * sd / std::sqrt(n));
+  EXPECT_NEAR(r.sd, sd, 0.03 * sd);  // the sample sd's standard error is ~0.6 % here (log-normal kurtosis at s ≈ 0.14)
+  const double se_median = 1.2533 * median * std::sqrt(s2) / std::sqrt(n);
+  EXPECT_NEAR(r.p50, median, 4 * se_median);
+  EXPECT_NEAR(r.p5, median * std::exp(-1.6449 * std::sqrt(s2)), 6 * se_median);
+  EXPECT_NEAR(r.p95, median * std::exp(1.6449 * std::sqrt(s2)), 6 * se_median);
 }
 
 // The limiting magnitude along SNR = T: m = m₀ + 5 log₁₀(D/D₀) exactly, so for D ~ normal(15 cm, 0.3 cm) the
@@ -127,6 +205,12 @@ TEST(UncertaintyCli, BadInputIsOneLineAndExit2) {
            {"--vary 'target.magnitude=normal(15, 1)'", "[[solve]]"},
            {"--vary 'optics.apperture=normal(15 cm, 1 cm)'", "did you mean"},
            {"--vary 'optics.transmittance=normal(0.56, 0.02)' --samples 1", "at least 2"},
+           {"--vary 'optics.transmittance=truncated(normal(0.56, 0.02), 0.7, 0.8)'", "holds a probability of"},
+           {"--vary 'optics.transmittance=truncated(normal(0.56, 0.02), 0.6, 0.5)'", "needs lo < hi"},
+           {"--vary 'optics.transmittance=truncated(normal(0.56, 0.02), 0.5)'", "truncated takes a distribution and two values"},
+           {"--vary 'optics.transmittance=truncated(truncated(normal(0.56, 0.02), 0, 1), 0, 1)'", "give one interval"},
+           {"--vary 'optics.aperture=truncated(normal(15 cm, 3 mm), 14, 16 cm)'", "has no unit"},
+           {"--vary 'optics.transmittance=truncated(normal(0.56, 0.02), 0.5, 0.6'", "expected normal(mean, sd)"},
        }) {
     const CliResult r = run_cli(scratch, sbv + k.arguments);
     EXPECT_EQ(r.exit_code, 2) << k.arguments << "\n" << r.err;

@@ -5,9 +5,11 @@
 #include "radchain/error.hpp"
 #include "radchain/units.hpp"
 
+#include <boost/math/quadrature/tanh_sinh.hpp>
 #include <boost/math/special_functions/erf.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -25,7 +27,19 @@ std::string trimmed(const std::string& s) {
 
 }  // namespace
 
-double Distribution::mean() const {
+double Distribution::mean() const { return truncated ? truncated_mean : parent_mean(); }
+
+double Distribution::sd() const { return truncated ? truncated_sd : parent_sd(); }
+
+double Distribution::quantile(double u) const {
+  if (!truncated) return parent_quantile(u);
+  const double p = cdf_lo + u * (cdf_hi - cdf_lo);
+  if (!(p > 0)) return lo;  // the parent's quantile is −∞ at 0 and +∞ at 1: the interval's ends instead
+  if (!(p < 1)) return hi;
+  return std::clamp(parent_quantile(p), lo, hi);
+}
+
+double Distribution::parent_mean() const {
   switch (kind) {
     case Kind::normal: return a;
     case Kind::uniform: return (a + b) / 2;
@@ -35,7 +49,7 @@ double Distribution::mean() const {
   return nan;
 }
 
-double Distribution::sd() const {
+double Distribution::parent_sd() const {
   switch (kind) {
     case Kind::normal: return b;
     case Kind::uniform: return (b - a) / std::sqrt(12.0);
@@ -45,7 +59,7 @@ double Distribution::sd() const {
   return nan;
 }
 
-double Distribution::quantile(double u) const {
+double Distribution::parent_quantile(double u) const {
   // Φ⁻¹(u) = −√2 erfc⁻¹(2u)
   auto z = [](double p) { return -std::numbers::sqrt2 * boost::math::erfc_inv(2 * p); };
   switch (kind) {
@@ -61,6 +75,40 @@ double Distribution::quantile(double u) const {
     }
   }
   return nan;
+}
+
+double Distribution::cdf(double x) const {
+  auto phi = [](double z) { return 0.5 * boost::math::erfc(-z / std::numbers::sqrt2); };  // Φ(z)
+  switch (kind) {
+    case Kind::normal: return phi((x - a) / b);
+    case Kind::uniform: return std::clamp((x - a) / (b - a), 0.0, 1.0);
+    case Kind::lognormal: {
+      if (!(x > 0)) return 0;
+      const double s2 = std::log1p((b / a) * (b / a));
+      return phi((std::log(x) - (std::log(a) - s2 / 2)) / std::sqrt(s2));
+    }
+    case Kind::triangular:
+      if (x <= a) return 0;
+      if (x >= c) return 1;
+      return x <= b ? (x - a) * (x - a) / ((c - a) * (b - a)) : 1 - (c - x) * (c - x) / ((c - a) * (c - b));
+  }
+  return nan;
+}
+
+double Distribution::truncate(double lower, double upper) {
+  truncated = false;
+  lo = lower, hi = upper;
+  cdf_lo = cdf(lower), cdf_hi = cdf(upper);
+  const double probability = cdf_hi - cdf_lo;
+  if (!(probability >= least_truncated_probability)) return probability;  // refused by the caller: nothing to sample
+  truncated = true;
+  // Moments of the truncated law as integrals of its quantile over u ∈ (0, 1): E[x] = ∫Q, var = ∫(Q − E[x])². Q is
+  // bounded by [lo, hi] but, for an interval reaching far into a tail, steep at an end (Φ⁻¹ near 0): tanh–sinh
+  // quadrature (Takahasi & Mori 1974) converges there, where Gauss–Kronrod stalls at ~1e-9.
+  boost::math::quadrature::tanh_sinh<double> quadrature;
+  truncated_mean = quadrature.integrate([&](double u) { return quantile(u); }, 0.0, 1.0, 1e-14);
+  truncated_sd = std::sqrt(quadrature.integrate([&](double u) { const double d = quantile(u) - truncated_mean; return d * d; }, 0.0, 1.0, 1e-14));
+  return probability;
 }
 
 VariedInput parse_varied_input(Chain& chain, const std::string& key, const std::string& spec_text, const SourceLocation& where,
@@ -100,66 +148,100 @@ VariedInput parse_varied_input(Chain& chain, const std::string& key, const std::
   v.key = key;
   v.as_written = spec_text;
   v.unit = spec.type == ParamType::quantity ? spec.si_unit : "1";
-  const auto open = spec_text.find('(');
-  if (open == std::string::npos || spec_text.back() != ')')
-    throw fail("expected normal(mean, sd), uniform(lo, hi), lognormal(mean, sd) or triangular(lo, mode, hi)");
-  const std::string name = trimmed(spec_text.substr(0, open));
-  std::vector<std::string> args;
-  {
-    const std::string inner = spec_text.substr(open + 1, spec_text.size() - open - 2);
-    std::size_t start = 0;
-    for (std::size_t at; (at = inner.find(',', start)) != std::string::npos; start = at + 1) args.push_back(trimmed(inner.substr(start, at - start)));
-    args.push_back(trimmed(inner.substr(start)));
-  }
-  std::size_t arity = 2;
-  if (name == "normal") v.distribution.kind = Distribution::Kind::normal;
-  else if (name == "uniform") v.distribution.kind = Distribution::Kind::uniform;
-  else if (name == "lognormal") v.distribution.kind = Distribution::Kind::lognormal;
-  else if (name == "triangular") v.distribution.kind = Distribution::Kind::triangular, arity = 3;
-  else {
-    const std::string near = nearest_match(name, {"normal", "uniform", "lognormal", "triangular"});
-    throw fail(fmt::format("unknown distribution \"{}\"{}: normal, uniform, lognormal or triangular", name,
-                           near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
-  }
-  if (args.size() != arity) throw fail(fmt::format("{} takes {} values, {} given", name, arity, args.size()));
   const bool dimensionless = spec.type != ParamType::quantity || units::dimension_of(spec.si_unit) == "1";
-  double values[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < arity; ++i) {
+  // One number with the key's unit ("9 e-"; plain for a dimensionless key), in SI.
+  auto value_of = [&](const std::string& text) {
     units::ParsedQuantity q;
     try {
-      q = units::split_quantity(args[i]);
+      q = units::split_quantity(text);
     } catch (const std::invalid_argument&) {
-      throw fail(fmt::format("\"{}\" does not start with a number", args[i]));
+      throw fail(fmt::format("\"{}\" does not start with a number", text));
     }
-    if (!std::isfinite(q.number)) throw fail(fmt::format("\"{}\" is not finite", args[i]));
+    if (!std::isfinite(q.number)) throw fail(fmt::format("\"{}\" is not finite", text));
     if (q.unit.empty() && !dimensionless)
-      throw fail(fmt::format("\"{}\" has no unit: expected {}", args[i], units::dimension_name(spec.si_unit)));
+      throw fail(fmt::format("\"{}\" has no unit: expected {}", text, units::dimension_name(spec.si_unit)));
     double factor = 1;
     try {
       factor = units::conversion(q.unit.empty() ? "1" : q.unit, spec.type == ParamType::quantity ? spec.si_unit : "1").factor;
     } catch (const std::invalid_argument&) {
-      throw fail(fmt::format("\"{}\": unknown unit", args[i]));
+      throw fail(fmt::format("\"{}\": unknown unit", text));
     } catch (const std::domain_error&) {
-      throw fail(fmt::format("\"{}\": wrong unit, expected {}", args[i], dimensionless ? std::string("a plain number") : units::dimension_name(spec.si_unit)));
+      throw fail(fmt::format("\"{}\": wrong unit, expected {}", text, dimensionless ? std::string("a plain number") : units::dimension_name(spec.si_unit)));
     }
-    values[i] = q.number * factor;
+    return q.number * factor;
+  };
+  const std::string expected =
+      "expected normal(mean, sd), uniform(lo, hi), lognormal(mean, sd), triangular(lo, mode, hi) or truncated(<one of these>, lo, hi)";
+  // "name(arg, arg, ...)": the name and its arguments split at the commas outside parentheses.
+  auto call_of = [&](const std::string& text, std::string& name) {
+    const auto open = text.find('(');
+    if (open == std::string::npos || text.empty() || text.back() != ')') throw fail(expected);
+    name = trimmed(text.substr(0, open));
+    std::vector<std::string> args;
+    const std::string inner = text.substr(open + 1, text.size() - open - 2);
+    int depth = 0;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i < inner.size(); ++i) {
+      if (inner[i] == '(') ++depth;
+      if (inner[i] == ')' && --depth < 0) throw fail(expected);
+      if (inner[i] == ',' && depth == 0) args.push_back(trimmed(inner.substr(start, i - start))), start = i + 1;
+    }
+    if (depth != 0) throw fail(expected);
+    args.push_back(trimmed(inner.substr(start)));
+    return args;
+  };
+  auto parse = [&](const std::string& text) {
+    std::string name;
+    const std::vector<std::string> args = call_of(text, name);
+    Distribution d;
+    std::size_t arity = 2;
+    if (name == "normal") d.kind = Distribution::Kind::normal;
+    else if (name == "uniform") d.kind = Distribution::Kind::uniform;
+    else if (name == "lognormal") d.kind = Distribution::Kind::lognormal;
+    else if (name == "triangular") d.kind = Distribution::Kind::triangular, arity = 3;
+    else {
+      const std::string near = nearest_match(name, {"normal", "uniform", "lognormal", "triangular", "truncated"});
+      throw fail(fmt::format("unknown distribution \"{}\"{}: normal, uniform, lognormal, triangular or truncated", name,
+                             near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+    }
+    if (args.size() != arity) throw fail(fmt::format("{} takes {} values, {} given", name, arity, args.size()));
+    double values[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < arity; ++i) values[i] = value_of(args[i]);
+    d.a = values[0], d.b = values[1], d.c = values[2];
+    switch (d.kind) {
+      case Distribution::Kind::normal:
+        if (!(d.b > 0)) throw fail("the standard deviation must be > 0");
+        break;
+      case Distribution::Kind::lognormal:
+        if (!(d.a > 0) || !(d.b > 0)) throw fail("lognormal(mean, sd) needs mean > 0 and sd > 0");
+        break;
+      case Distribution::Kind::uniform:
+        if (!(d.b > d.a)) throw fail("uniform(lo, hi) needs lo < hi");
+        break;
+      case Distribution::Kind::triangular:
+        if (!(d.a <= d.b && d.b <= d.c && d.a < d.c)) throw fail("triangular(lo, mode, hi) needs lo <= mode <= hi, lo < hi");
+        break;
+    }
+    return d;
+  };
+  std::string name;
+  const std::vector<std::string> args = call_of(spec_text, name);
+  if (name == "truncated") {
+    // truncated(D, lo, hi): D restricted to [lo, hi]. The interval must hold a real share of D's probability, or
+    // the samples would be quantiles of rounding noise.
+    if (args.size() != 3) throw fail(fmt::format("truncated takes a distribution and two values (lo, hi), {} given", args.size()));
+    if (args[0].rfind("truncated", 0) == 0) throw fail("truncated(...) of a truncated distribution: give one interval");
+    v.distribution = parse(args[0]);
+    const double lower = value_of(args[1]), upper = value_of(args[2]);
+    if (!(lower < upper)) throw fail("truncated(D, lo, hi) needs lo < hi");
+    const double probability = v.distribution.truncate(lower, upper);
+    if (!v.distribution.truncated)
+      throw fail(fmt::format("[{}, {}] holds a probability of {:.3g} under {}: at least {:g} is needed", args[1], args[2], probability,
+                             args[0], Distribution::least_truncated_probability));
+  } else {
+    v.distribution = parse(spec_text);
   }
-  Distribution& d = v.distribution;
-  d.a = values[0], d.b = values[1], d.c = values[2];
-  switch (d.kind) {
-    case Distribution::Kind::normal:
-      if (!(d.b > 0)) throw fail("the standard deviation must be > 0");
-      break;
-    case Distribution::Kind::lognormal:
-      if (!(d.a > 0) || !(d.b > 0)) throw fail("lognormal(mean, sd) needs mean > 0 and sd > 0");
-      break;
-    case Distribution::Kind::uniform:
-      if (!(d.b > d.a)) throw fail("uniform(lo, hi) needs lo < hi");
-      break;
-    case Distribution::Kind::triangular:
-      if (!(d.a <= d.b && d.b <= d.c && d.a < d.c)) throw fail("triangular(lo, mode, hi) needs lo <= mode <= hi, lo < hi");
-      break;
-  }
+  const Distribution& d = v.distribution;
   if (!spec.in_range(d.mean()))
     throw fail(fmt::format("its mean {:g} {} is out of range: accepted {}", d.mean(), v.unit, spec.range_text()));
   return v;

@@ -5,6 +5,8 @@
 //   uniform(lo, hi)           flat on [lo, hi]
 //   lognormal(mean, sd)       exp of a Gaussian, given by the mean and standard deviation of the value itself
 //   triangular(lo, mode, hi)  triangular
+//   truncated(D, lo, hi)      any of the above restricted to [lo, hi] and renormalised (a tolerance that cannot
+//                             leave its physical range, e.g. a transmittance ≤ 1): truncated(normal(0.9, 0.05), 0, 1)
 // Each number carries its unit as --set takes it ("9 e-"); plain numbers for dimensionless keys.
 #include "radchain/chain.hpp"
 
@@ -16,9 +18,23 @@ struct Distribution {
   enum class Kind { normal, uniform, lognormal, triangular };
   Kind kind = Kind::normal;
   double a = 0, b = 0, c = 0;  // SI: normal (mean, sd), uniform (lo, hi), lognormal (mean, sd), triangular (lo, mode, hi)
+  // Truncation to [lo, hi] (set by truncate()): samples are the parent's quantiles over [F(lo), F(hi)].
+  bool truncated = false;
+  double lo = 0, hi = 0;
+  double cdf_lo = 0, cdf_hi = 1, truncated_mean = 0, truncated_sd = 0;  // set by truncate()
   double mean() const;
   double sd() const;
   double quantile(double u) const;  // u in (0, 1)
+  double cdf(double x) const;       // of the distribution before truncation
+  // Restricts to [lo, hi] and returns the probability the parent gives that interval. Below
+  // least_truncated_probability nothing is truncated (`truncated` stays false) and the caller refuses it.
+  static constexpr double least_truncated_probability = 1e-6;
+  double truncate(double lo, double hi);
+
+ private:
+  double parent_mean() const;
+  double parent_sd() const;
+  double parent_quantile(double u) const;
 };
 
 struct VariedInput {
