@@ -31,7 +31,7 @@ const Schema& schema() {
       quantity("distance", "m", "1 AU").fallback("1 AU").above(0).described("Sun-target distance (inverse-square)"),
       spectrum_file("v_lambda", "1", "cie_1924_photopic_V_1nm.csv").fallback("cie_1924_photopic_V_1nm.csv")
           .described("photopic luminous efficiency V(λ) for the illuminance"),
-      number("visual_magnitude", "-26.73").fallback("-26.73").at_least(-30).at_most(-20)
+      number("visual_magnitude", "-26.73").fallback("-26.73").at_least(-30).at_most(-20).scales(Scaling::magnitude)
           .described("the Sun's apparent visual magnitude at 1 AU (Pan 2010 uses -26.73)"),
       quantity("illuminance", "lx", "1.3e5 lx").above(0).affects_spectrum()
           .described("paper value: pin the solar illuminance at 1 AU (the spectrum is scaled to it)"),

@@ -21,7 +21,7 @@ const Schema& schema() {
           .described("emitter-target distance: the table is scaled by (reference_distance / distance)²"),
       spectrum_file("v_lambda", "1", "cie_1924_photopic_V_1nm.csv").fallback("cie_1924_photopic_V_1nm.csv")
           .described("photopic luminous efficiency V(λ) for the illuminance"),
-      number("visual_magnitude", "-26.73").at_least(-30).at_most(40)
+      number("visual_magnitude", "-26.73").at_least(-30).at_most(40).scales(Scaling::magnitude)
           .described("the source's apparent visual magnitude at reference_distance (for point_magnitude targets)"),
   };
   return s;

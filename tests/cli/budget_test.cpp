@@ -77,7 +77,6 @@ TEST(Budget, SbvLimitingMagnitudeAgainstClosedForms) {
   const std::vector<Reference> references = {
       {"optics.aperture", 5 / std::numbers::ln10},
       {"optics.transmittance", 2.5 / std::numbers::ln10},
-      {"source.visual_magnitude", m_sun * 1.0},
       {"detector.read_noise", -T * T * sigma * sigma / (A * c * S * S)},
       {"detector.dark_rate", -T * T * Nd / (2 * A * c * S * S)},
       {"detector.full_well", -T * T * q * q / (2 * A * c * S * S)},
@@ -99,8 +98,19 @@ TEST(Budget, SbvLimitingMagnitudeAgainstClosedForms) {
   for (const char* p : {"optics.aperture", "detector.read_noise", "detector.integration_time"})
     EXPECT_NEAR(entry(b, "detector.snr", p).elasticity, 0.0, 1e-9) << p;
 
-  // Ranked by |elasticity|: the Sun's magnitude (26.73) first, then the aperture (2.17).
-  EXPECT_EQ(entry(b, "target.magnitude", "source.visual_magnitude").rank, 1u);
+  // The Sun's magnitude: dm/dm_sun = 1 exactly (the target's irradiance is E_sun 10^(0.4 (m_sun − m))); a magnitude's
+  // elasticity is by the flux it stands for, ∂m/∂ln F_sun = −2.5/ln 10, the same size as the QE's (a flux factor).
+  const BudgetEntry& sun = entry(b, "target.magnitude", "source.visual_magnitude");
+  EXPECT_TRUE(sun.per_flux);
+  EXPECT_NEAR(sun.value_si, m_sun, 1e-12);
+  EXPECT_NEAR(sun.derivative, 1.0, tolerance);
+  EXPECT_NEAR(sun.elasticity, -2.5 / std::numbers::ln10, tolerance * 1.0857);
+  EXPECT_NEAR(std::abs(sun.elasticity), entry(b, "target.magnitude", "detector.qe").elasticity, tolerance * 1.0857);
+  EXPECT_FALSE(entry(b, "target.magnitude", "detector.qe").per_flux);
+
+  // Ranked by |elasticity|: the aperture (2.17) first, then the threshold (1.43).
+  EXPECT_EQ(entry(b, "target.magnitude", "optics.aperture").rank, 1u);
+  EXPECT_EQ(entry(b, "target.magnitude", "criteria.detection.threshold").rank, 2u);
   std::size_t previous_rank = 0;
   double previous = INFINITY;
   for (const auto& e : b.entries)

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <limits>
 #include <ostream>
 #include <stdexcept>
@@ -328,7 +329,11 @@ Budget compute_budget(Chain& chain, const BudgetOptions& options) {
         e.derivative = d.value[k];
         e.error = d.error[k];
         if (e.derivative == 0) e.derivative = 0;  // no "-0"
-        e.elasticity = in.x0 * e.derivative;
+        // x ∂r/∂x compares inputs by their relative change. A magnitude is already the logarithm of a flux, so a
+        // relative change of it means nothing (−26.73 × ∂r/∂m for the Sun); its elasticity is by the flux it stands
+        // for, F = 10^(−0.4 m): ∂r/∂ln F = ∂r/∂m · dm/dln F = −(2.5/ln 10) ∂r/∂m (Pogson), comparable with a QE's.
+        e.per_flux = in.spec->scaling == Scaling::magnitude;
+        e.elasticity = e.per_flux ? -2.5 / std::numbers::ln10 * e.derivative : in.x0 * e.derivative;
         if (e.elasticity == 0) e.elasticity = 0;
         e.log_elasticity = f0[k] > 0 ? e.elasticity / f0[k] : std::numeric_limits<double>::quiet_NaN();
         const double magnitude = std::max(std::abs(e.derivative), std::abs(f0[k]) / scale);
@@ -367,6 +372,7 @@ namespace {
 std::string note_of(const BudgetEntry& e) {
   if (!e.ok) return "FAILED " + e.failure;
   if (!e.accurate) return fmt::format("uncertain: error estimate {:.3g} exceeds the tolerance", e.error);
+  if (e.per_flux) return "magnitude: elasticity per ln flux";
   return "";
 }
 
@@ -403,7 +409,7 @@ std::string format_budget_text(const Budget& budget) {
   text += budget.solved.empty() ? std::string("no [[solve]]: forward evaluation at every point\n")
                                 : "re-solved at every point: " + join(budget.solved) + "\n";
   text += "derivatives: Ridders' extrapolation of finite differences (Numerical Recipes §5.7); SI units; "
-          "elasticity = ∂r/∂ln x = x ∂r/∂x\n";
+          "elasticity = ∂r/∂ln x = x ∂r/∂x (a magnitude m: ∂r/∂ln F = −1.0857 ∂r/∂m, F = 10^(−0.4 m))\n";
   if (!budget.skipped.empty()) text += "not varied: " + join(budget.skipped) + "\n";
   for (std::size_t k = 0; k < budget.results.size(); ++k) {
     std::string unit;

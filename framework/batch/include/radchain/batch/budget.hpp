@@ -43,7 +43,8 @@ struct BudgetEntry {
   double value_si = 0;           // x
   double derivative = 0;         // ∂r/∂x, SI (result unit per parameter unit)
   std::string derivative_unit;   // "1/m", "e-/s"
-  double elasticity = 0;         // x ∂r/∂x, result unit
+  double elasticity = 0;         // x ∂r/∂x, result unit; for a magnitude x, ∂r/∂ln F = −(2.5/ln 10) ∂r/∂x
+  bool per_flux = false;         // x is a magnitude: the elasticity is by the flux F = 10^(−0.4 x) it stands for
   double log_elasticity = 0;     // (x/r) ∂r/∂x; NaN when r ≤ 0
   double error = 0;              // Ridders' error estimate of ∂r/∂x (absolute)
   double step = 0;               // the first step h (SI)
