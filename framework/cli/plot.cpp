@@ -180,6 +180,17 @@ void write_columns(std::ostream& out, const std::vector<double>& x, const std::v
   }
 }
 
+// A PNG ends with the IEND chunk: length 0, "IEND", its CRC AE 42 60 82 (PNG specification, ISO/IEC 15948 §5.6, §11.2.5).
+bool is_complete_png(const std::string& path) {
+  static constexpr unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in || in.tellg() < 8 + 12) return false;
+  in.seekg(-12, std::ios::end);
+  unsigned char tail[12];
+  in.read(reinterpret_cast<char*>(tail), 12);
+  return in && std::equal(std::begin(tail), std::end(tail), std::begin(iend));
+}
+
 // Runs `gnuplot -c script args…` without a shell, its output into `log`. Returns false when gnuplot fails;
 // throws when it cannot be started at all.
 bool run_gnuplot(const std::vector<std::string>& arguments, const fs::path& log) {
@@ -214,15 +225,22 @@ void draw(const std::string& png_path, const std::function<void(std::ostream&)>&
   const fs::path dir = fs::temp_directory_path() / fmt::format("radchain-plot-{}-{}", ::getpid(), counter++);
   fs::create_directories(dir);
   const fs::path data = dir / "data.tsv", script_path = dir / "plot.gp", log = dir / "gnuplot.log";
-  {
-    std::ofstream out(data);
-    write_data(out);
-  }
-  auto run = [&](const std::string& terminal) {
-    {
-      std::ofstream gp(script_path);
-      gp << head(terminal) << script;
+  // The data and the script: a write that fails (a full /tmp, a file size limit) would make gnuplot draw a cut
+  // curve without complaint, so each goes through AtomicFile, whose commit reports the failure and its reason.
+  auto written = [&](const fs::path& path, const std::function<void(std::ostream&)>& fill) {
+    try {
+      AtomicFile file(path.string(), "--plot");
+      fill(file.stream());
+      file.commit();
+    } catch (...) {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+      throw;
     }
+  };
+  written(data, write_data);
+  auto run = [&](const std::string& terminal) {
+    written(script_path, [&](std::ostream& gp) { gp << head(terminal) << script; });
     std::vector<std::string> all = {"-c", script_path.string(), png.temporary_path(), data.string()};
     all.insert(all.end(), arguments.begin(), arguments.end());
     return run_gnuplot(all, log);
@@ -242,6 +260,11 @@ void draw(const std::string& png_path, const std::function<void(std::ostream&)>&
   std::error_code ec;
   fs::remove_all(dir, ec);
   if (!drawn) throw std::runtime_error(why);
+  // gnuplot's PNG writers ignore write errors (a full disk or a file size limit leaves a cut file and exit status
+  // 0), so the file is checked for the PNG's last chunk, IEND, before it replaces the target.
+  if (!is_complete_png(png.temporary_path()))
+    throw WriteError("cannot write " + png_path + ": gnuplot's PNG is incomplete (no IEND chunk): the disk is full or a file "
+                     "size limit was reached");
   png.commit();
 }
 

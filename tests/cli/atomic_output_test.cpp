@@ -156,3 +156,48 @@ TEST(AtomicOutput, SigtermStopsASweepWithoutOutput) { kill_a_running_sweep(SIGTE
 TEST(AtomicOutput, SigintStopsASweepWithoutOutput) { kill_a_running_sweep(SIGINT, "interrupted (SIGINT); no output file was written"); }
 
 }  // namespace
+
+namespace {
+using namespace radchain::test;
+
+// Images, MTF tables and plots (issue 18 item 3): under a file size limit too small for them, each command fails
+// with one line naming the file, exit 3 (a write error), an existing file at the target untouched and no temporary
+// left — including the PNGs gnuplot draws (a child process) and the FITS frames CFITSIO writes. The limit is set in
+// bytes with prlimit (util-linux), not the shell's ulimit, whose block size differs between dash and bash.
+TEST(AtomicOutput, ImagesTablesAndPlotsUnderAFileSizeLimit) {
+  Scratch scratch;
+  const std::string kolobrodov = source_dir + "/sensors/kolobrodov-1996-ccd151-computed.toml";
+  const std::string worldview = source_dir + "/sensors/worldview-2-pan.toml";
+  const std::string sbv_frame = "render '" + sbv_file + "' --focal-length \"45 cm\" --pixel-pitch \"27 um\" --seed 3";
+  struct Case {
+    std::string file, command;  // the command writes `file` (in the scratch folder), larger than `limit_bytes`
+    std::uintmax_t limit_bytes;
+  };
+  const std::vector<Case> cases = {
+      {"frame.fits", sbv_frame + " --width 256 --height 256 --out '" + (scratch / "frame.fits").string() + "'", 8192},
+      // a 64×64 frame (14 400 bytes of FITS) fits under the limit, its 1024×1024 TIFF preview does not
+      {"preview.tif", sbv_frame + " --width 64 --height 64 --upscale 16 --out '" + (scratch / "small.fits").string() + "' --png '" +
+                          (scratch / "preview.tif").string() + "'", 20000},
+      {"scene.tif", "render '" + kolobrodov + "' --out '" + (scratch / "scene.tif").string() + "'", 8192},
+      {"mtf.csv", "mtf '" + worldview + "' --out '" + (scratch / "mtf.csv").string() + "'", 8192},
+      {"mtf.png", "mtf '" + worldview + "' --out /dev/null --plot '" + (scratch / "mtf.png").string() + "'", 8192},
+      {"sweep.png", small_sweep + " --out /dev/null --plot '" + (scratch / "sweep.png").string() + "'", 8192},
+      {"hist.png", "uncertainty '" + sbv_file + "' --vary 'optics.transmittance=normal(0.56, 0.02)' --results target.magnitude "
+                   "--samples 200 --plot '" + (scratch / "hist.png").string() + "'", 8192},
+  };
+  for (const Case& k : cases) {
+    const fs::path target = scratch / k.file;
+    const CliResult full = run_cli(scratch, k.command);
+    ASSERT_EQ(full.exit_code, 0) << k.command << "\n" << full.err;
+    ASSERT_GT(fs::file_size(target), k.limit_bytes) << k.file;
+    write_text(target, "previous contents\n");
+    const CliResult r = run_shell(scratch, "trap '' XFSZ; exec prlimit --fsize=" + std::to_string(k.limit_bytes) + " '" + cli + "' " + k.command);
+    EXPECT_EQ(r.exit_code, 3) << k.command << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << k.command << "\n" << r.err;
+    EXPECT_NE(r.err.find("cannot write"), std::string::npos) << k.command << "\n" << r.err;
+    EXPECT_EQ(read_text(target), "previous contents\n") << k.file;
+    EXPECT_TRUE(leftovers(scratch).empty()) << k.file;
+  }
+}
+
+}  // namespace
