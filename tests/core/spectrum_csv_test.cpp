@@ -65,6 +65,7 @@ const Shipped shipped[] = {
     {"lsst_filter_r_throughputs1.9.csv", "1"},
     {"lsst_detector_throughputs1.9.csv", "1"},
     {"lsst_darksky_throughputs1.9.csv", "W m-2 sr-1 m-1"},
+    {"tess_response_v2.0.csv", "1"},
 };
 
 TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
