@@ -180,3 +180,80 @@ TEST(RenderFits, PreviewsAndScenes) {
 }
 
 }  // namespace
+
+namespace {
+using namespace radchain::render;
+
+std::string bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << bytes;
+}
+
+// The message read_image gives for `bytes` ("" when it reads them).
+std::string refusal(const std::string& bytes) {
+  const std::string path = temp_path("malformed.fits");
+  write_bytes(path, bytes);
+  try {
+    (void)read_image(path);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A card: key, "= ", value right-justified to column 30 (FITS fixed format).
+std::string card(const std::string& key, const std::string& value) {
+  std::string c = key + std::string(8 - key.size(), ' ') + "= " + std::string(20 - value.size(), ' ') + value;
+  return c + std::string(80 - c.size(), ' ');
+}
+
+// Truncated and malformed FITS files are refused by radchain's structure check with the reason, before CFITSIO
+// opens them (FITS Standard 4.0 §3.1, §4.4.1.1; CFITSIO 4.2 leaked its handle on some, found by scene_fits_fuzz):
+// a size that is not a whole number of blocks, data shorter than the header declares, mandatory keywords out of
+// order, an unknown BITPIX, a cube, a side beyond 16384 pixels, no END.
+TEST(RenderFits, TruncatedOrMalformedFilesAreRefusedWithTheReason) {
+  Image image(16, 16, 0.25f);
+  const std::string good = temp_path("good.fits");
+  write_fits(good, image, {}, FitsPixel::float32);
+  const std::string whole = bytes_of(good);
+  ASSERT_EQ(whole.size(), 2u * 2880u);  // one header block, 1024 data bytes in one block
+  EXPECT_EQ(refusal(whole), "");
+  EXPECT_NE(refusal(whole.substr(0, 3997)).find("3997 bytes: not a whole number of 2880-byte FITS blocks"), std::string::npos);
+  EXPECT_NE(refusal(whole.substr(0, 2880)).find("2880 bytes, but its header declares 5760 (truncated)"), std::string::npos);
+  EXPECT_NE(refusal("").find("0 bytes"), std::string::npos);
+
+  auto header = [](std::vector<std::string> cards) {
+    std::string h;
+    for (const auto& c : cards) h += c;
+    h += "END" + std::string(77, ' ');
+    h.resize((h.size() + 2879) / 2880 * 2880, ' ');
+    return h + std::string(2880 * 400, '\0');
+  };
+  const std::string simple = card("SIMPLE", "T");
+  EXPECT_NE(refusal(header({simple, card("NAXIS", "2"), card("BITPIX", "16")})).find("card 2 is \"NAXIS\", expected BITPIX"),
+            std::string::npos);
+  EXPECT_NE(refusal(header({simple, card("BITPIX", "12"), card("NAXIS", "2"), card("NAXIS1", "4"), card("NAXIS2", "4")}))
+                .find("BITPIX = 12: not a FITS pixel type"),
+            std::string::npos);
+  EXPECT_NE(refusal(header({simple, card("BITPIX", "8"), card("NAXIS", "3"), card("NAXIS1", "4"), card("NAXIS2", "4"),
+                            card("NAXIS3", "4")}))
+                .find("not a 2-D image (NAXIS = 3)"),
+            std::string::npos);
+  EXPECT_NE(refusal(header({simple, card("BITPIX", "8"), card("NAXIS", "2"), card("NAXIS1", "100000"), card("NAXIS2", "4")}))
+                .find("100000 x 4 pixels: 1 to 16384 a side"),
+            std::string::npos);
+  EXPECT_NE(refusal(header({simple, card("BITPIX", "8"), card("NAXIS", "2"), card("NAXIS1", "4x"), card("NAXIS2", "4")}))
+                .find("NAXIS1 is not an integer"),
+            std::string::npos);
+  EXPECT_NE(refusal(std::string(2880, ' ')).find("card 1 is \"\", expected SIMPLE"), std::string::npos);
+  std::string no_end = simple + card("BITPIX", "8") + card("NAXIS", "2") + card("NAXIS1", "4") + card("NAXIS2", "4");
+  no_end.resize(2880, ' ');
+  EXPECT_NE(refusal(no_end).find("no END card"), std::string::npos);
+}
+
+}  // namespace
