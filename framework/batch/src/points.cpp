@@ -203,9 +203,11 @@ void PointsEvaluator::check(const double* const* values, std::size_t count) cons
   }
 }
 
-std::size_t PointsEvaluator::run(const double* const* values, std::size_t count, double* out, char* ok,
-                                 std::string* failure) {
-  if (count == 0) return 0;
+std::size_t PointsEvaluator::run_range(const double* const* values, std::size_t count, std::size_t begin, std::size_t end,
+                                       double* out, char* ok, std::string* failure) {
+  end = std::min(end, count);
+  if (begin >= end) return 0;
+  if (begin % lane_count != 0) throw std::logic_error("PointsEvaluator::run_range: begin must be a multiple of the lane count");
   preload_plugins();  // workers then only read the host's tables
   if (workers_.size() < worker_slots()) workers_.resize(worker_slots());
   std::mutex mutex;
@@ -213,15 +215,15 @@ std::size_t PointsEvaluator::run(const double* const* values, std::size_t count,
   std::string first_message;
   std::atomic<std::size_t> failed{0};
   // Chunks of 4096 points: a multiple of the lane count, so that no group straddles two chunks.
-  parallel_chunks(count, 4096, [&](std::size_t slot, std::size_t begin, std::size_t end) {
+  parallel_chunks(end - begin, 4096, [&](std::size_t slot, std::size_t from, std::size_t to) {
     auto& worker = workers_[slot];
     if (!worker) worker = std::make_unique<Worker>(*this);
     std::string message;
-    const std::size_t n = worker->evaluate(values, count, begin, end, out, ok, message);
+    const std::size_t n = worker->evaluate(values, count, begin + from, begin + to, out, ok, message);
     if (n == 0) return;
     failed += n;
     std::lock_guard lock(mutex);
-    if (begin < first_failed) first_failed = begin, first_message = message;
+    if (begin + from < first_failed) first_failed = begin + from, first_message = message;
   });
   if (failure && failed > 0) *failure = first_message;
   return failed;

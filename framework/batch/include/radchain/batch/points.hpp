@@ -50,7 +50,13 @@ class PointsEvaluator {
   // Evaluates `count` points: values[p][i] is parameter p at point i (SI). Writes result r at point i (SI) to
   // out[r * count + i] and ok[i] (0 where a solve failed: the solved unknown's column is NaN there). Returns the
   // number of points whose solve failed; `failure` gets the first one's message. Values are not checked (check()).
-  std::size_t run(const double* const* values, std::size_t count, double* out, char* ok, std::string* failure = nullptr);
+  std::size_t run(const double* const* values, std::size_t count, double* out, char* ok, std::string* failure = nullptr) {
+    return run_range(values, count, 0, count, out, ok, failure);
+  }
+  // The same for the points [begin, end) only (the arrays are the whole ones): a caller can run a long sweep in
+  // blocks and check for an interrupt between them (Python's Ctrl-C). `begin` is a multiple of lane_count.
+  std::size_t run_range(const double* const* values, std::size_t count, std::size_t begin, std::size_t end, double* out,
+                        char* ok, std::string* failure = nullptr);
 
  private:
   class Worker;
