@@ -37,7 +37,7 @@ const Schema& schema() {
           .described("airmass at which transmittance_table was computed: τ(λ)^{X/X_table} at airmass X"),
       quantity("seeing", "rad", "0.7 arcsec").above(0)
           .described("seeing FWHM at the zenith (scaled by X^0.6); default: no seeing"),
-      number("sky_brightness", "21.2").at_least(10).at_most(30)
+      number("sky_brightness", "21.2").at_least(10).at_most(30).scales(Scaling::magnitude)
           .described("sky surface brightness at the site in AB mag/arcsec² (flat in f_ν; in sky_band when sky_table is given); default: no sky"),
       spectrum_file("sky_table", "W m-2 sr-1 m-1", "lsst_darksky_throughputs1.9.csv")
           .described("sky spectral radiance at the site (a dark-sky SED; W m-2 nm-1 arcsec-2 or per sr)"),

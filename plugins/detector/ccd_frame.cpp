@@ -46,7 +46,7 @@ const Schema& schema() {
           .described("side n of the n×n detection window; dark, read, quantisation and sky noise add over n² pixels"),
       number("ensquared_energy", "0.8").above(0).at_most(1)
           .described("fraction of the point image in the window (default: from the optics PSF if any, else 1 as in Pan 2010)"),
-      number("sky_brightness", "22.5").at_least(-10).at_most(40)
+      number("sky_brightness", "22.5").at_least(-10).at_most(40).scales(Scaling::magnitude)
           .described("sky background in V mag/arcsec² (zodiacal light + unresolved stars; 22-23 in space); default none"),
   };
   return s;

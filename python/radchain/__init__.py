@@ -384,7 +384,8 @@ def compare(a, b, set: dict | None = None, solve: bool = True, tolerance: float 
 
 def budget(path, results, set: dict | None = None, solve: bool = True):
     """The sensitivity budget, as `radchain budget --format json`: DataFrame of every (result, input) pair with the
-    derivative ∂r/∂x (SI), the elasticity ∂r/∂ln x, ∂ln r/∂ln x, its error estimate and method, ranked."""
+    derivative ∂r/∂x (SI), the elasticity ∂r/∂ln x (for a magnitude input, ∂r/∂ln F of the flux it stands for; its
+    note says so), ∂ln r/∂ln x, its error estimate and method, ranked."""
     if isinstance(results, str):
         results = [results]
     texts, numbers = _split_sets(set)

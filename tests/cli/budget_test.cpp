@@ -122,6 +122,23 @@ TEST(Budget, SbvLimitingMagnitudeAgainstClosedForms) {
 }
 
 // The root-finder (TOMS 748 to 2^-47 of the bracket) instead of the closed form: still within 1e-6.
+// A sky brightness in mag/arcsec² is a magnitude too: its elasticity is per ln of the sky's flux. Rubin r's m5:
+// with the sky's flux B, n² ≈ B n_eff + read + dark at SNR 5, so ∂m5/∂m_sky lies in (0, ½] — ½ when the sky
+// dominates the noise (m5 ∝ −1.25 lg B), less with read noise and the source's own shot noise.
+TEST(Budget, SkyBrightnessIsAMagnitude) {
+  const Budget b = budget_of(source_dir + "/sensors/rubin-lsst-r-m5.toml", {"target.magnitude"});
+  const BudgetEntry& sky = entry(b, "target.magnitude", "atmosphere.sky_brightness");
+  ASSERT_TRUE(sky.ok) << sky.failure;
+  EXPECT_TRUE(sky.per_flux);
+  EXPECT_GT(sky.derivative, 0.3);  // Rubin r is sky-dominated (987 e- of sky per pixel against 77 e-² of read noise)
+  EXPECT_LT(sky.derivative, 0.5);
+  EXPECT_NEAR(sky.elasticity, -2.5 / std::numbers::ln10 * sky.derivative, 1e-12);
+  const std::string text = format_budget_text(b);
+  const auto row = text.find("atmosphere.sky_brightness");
+  ASSERT_NE(row, std::string::npos);
+  EXPECT_NE(text.substr(row, text.find('\n', row) - row).find("magnitude: elasticity per ln flux"), std::string::npos) << text;
+}
+
 TEST(Budget, SbvWithBracketingSolver) {
   Chain chain = load_sensor(sbv_file);
   chain.solver = SolverChoice::root;

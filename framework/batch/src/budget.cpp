@@ -371,9 +371,9 @@ namespace {
 
 std::string note_of(const BudgetEntry& e) {
   if (!e.ok) return "FAILED " + e.failure;
-  if (!e.accurate) return fmt::format("uncertain: error estimate {:.3g} exceeds the tolerance", e.error);
-  if (e.per_flux) return "magnitude: elasticity per ln flux";
-  return "";
+  std::string note = e.per_flux ? "magnitude: elasticity per ln flux" : "";
+  if (!e.accurate) note += fmt::format("{}uncertain: error estimate {:.3g} exceeds the tolerance", note.empty() ? "" : "; ", e.error);
+  return note;
 }
 
 std::vector<std::string> cells_of(const BudgetEntry& e) {

@@ -29,7 +29,8 @@ void plot_budget(const std::string& png_path, const Budget& budget) {
     for (const auto& e : budget.entries) {
       if (e.result != result) continue;
       unit = e.result_unit;
-      if (e.ok && panel.bars.size() < tornado_rows) panel.bars.emplace_back(e.parameter, e.elasticity);
+      // A magnitude's bar is per ln of the flux it stands for (BudgetEntry::per_flux): its label says so.
+      if (e.ok && panel.bars.size() < tornado_rows) panel.bars.emplace_back(e.parameter + (e.per_flux ? " (per ln flux)" : ""), e.elasticity);
     }
     std::reverse(panel.bars.begin(), panel.bars.end());  // ranked largest first: the largest bar on top
     panel.x_label = fmt::format("∂ {} / ∂ ln x{}   (change for +1 % of x: 0.01 × bar)", result,

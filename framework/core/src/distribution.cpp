@@ -3,10 +3,10 @@
 #include "radchain/distribution.hpp"
 
 #include "radchain/error.hpp"
+#include "radchain/physics/detection.hpp"
 #include "radchain/units.hpp"
 
 #include <boost/math/quadrature/tanh_sinh.hpp>
-#include <boost/math/special_functions/erf.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -31,14 +31,6 @@ double Distribution::mean() const { return truncated ? truncated_mean : parent_m
 
 double Distribution::sd() const { return truncated ? truncated_sd : parent_sd(); }
 
-double Distribution::quantile(double u) const {
-  if (!truncated) return parent_quantile(u);
-  const double p = cdf_lo + u * (cdf_hi - cdf_lo);
-  if (!(p > 0)) return lo;  // the parent's quantile is −∞ at 0 and +∞ at 1: the interval's ends instead
-  if (!(p < 1)) return hi;
-  return std::clamp(parent_quantile(p), lo, hi);
-}
-
 double Distribution::parent_mean() const {
   switch (kind) {
     case Kind::normal: return a;
@@ -59,15 +51,27 @@ double Distribution::parent_sd() const {
   return nan;
 }
 
+namespace {
+// ln x ~ N(μ, s²) for a log-normal of mean m and sd σ: s² = ln(1 + σ²/m²), μ = ln m − s²/2.
+struct LogNormal {
+  double mu, s;
+};
+LogNormal log_normal(double mean, double sd) {
+  const double s2 = std::log1p((sd / mean) * (sd / mean));
+  return {std::log(mean) - s2 / 2, std::sqrt(s2)};
+}
+}  // namespace
+
+// Each law in both tails: quantile(u) from the lower-tail probability u = F(x), upper_quantile(q) from the
+// upper-tail probability q = 1 − F(x), each accurate where its probability is small (no 1 − p cancellation).
 double Distribution::parent_quantile(double u) const {
-  // Φ⁻¹(u) = −√2 erfc⁻¹(2u)
-  auto z = [](double p) { return -std::numbers::sqrt2 * boost::math::erfc_inv(2 * p); };
+  using physics::standard_normal_quantile;
   switch (kind) {
-    case Kind::normal: return a + b * z(u);
+    case Kind::normal: return a + b * standard_normal_quantile(u);
     case Kind::uniform: return a + (b - a) * u;
     case Kind::lognormal: {
-      const double s2 = std::log1p((b / a) * (b / a));
-      return std::exp(std::log(a) - s2 / 2 + std::sqrt(s2) * z(u));
+      const LogNormal l = log_normal(a, b);
+      return std::exp(l.mu + l.s * standard_normal_quantile(u));
     }
     case Kind::triangular: {  // lo a, mode b, hi c
       const double f = (b - a) / (c - a);
@@ -77,15 +81,31 @@ double Distribution::parent_quantile(double u) const {
   return nan;
 }
 
-double Distribution::cdf(double x) const {
-  auto phi = [](double z) { return 0.5 * boost::math::erfc(-z / std::numbers::sqrt2); };  // Φ(z)
+double Distribution::parent_upper_quantile(double q) const {
+  using physics::standard_normal_quantile;
   switch (kind) {
-    case Kind::normal: return phi((x - a) / b);
+    case Kind::normal: return a - b * standard_normal_quantile(q);
+    case Kind::uniform: return b - (b - a) * q;
+    case Kind::lognormal: {
+      const LogNormal l = log_normal(a, b);
+      return std::exp(l.mu - l.s * standard_normal_quantile(q));
+    }
+    case Kind::triangular: {
+      const double f = (c - b) / (c - a);  // the upper tail's share
+      return q < f ? c - std::sqrt(q * (c - a) * (c - b)) : a + std::sqrt((1 - q) * (c - a) * (b - a));
+    }
+  }
+  return nan;
+}
+
+double Distribution::cdf(double x) const {
+  switch (kind) {
+    case Kind::normal: return physics::standard_normal_cdf((x - a) / b);
     case Kind::uniform: return std::clamp((x - a) / (b - a), 0.0, 1.0);
     case Kind::lognormal: {
       if (!(x > 0)) return 0;
-      const double s2 = std::log1p((b / a) * (b / a));
-      return phi((std::log(x) - (std::log(a) - s2 / 2)) / std::sqrt(s2));
+      const LogNormal l = log_normal(a, b);
+      return physics::standard_normal_cdf((std::log(x) - l.mu) / l.s);
     }
     case Kind::triangular:
       if (x <= a) return 0;
@@ -95,11 +115,44 @@ double Distribution::cdf(double x) const {
   return nan;
 }
 
+double Distribution::survival(double x) const {
+  switch (kind) {
+    case Kind::normal: return physics::standard_normal_tail((x - a) / b);
+    case Kind::uniform: return std::clamp((b - x) / (b - a), 0.0, 1.0);
+    case Kind::lognormal: {
+      if (!(x > 0)) return 1;
+      const LogNormal l = log_normal(a, b);
+      return physics::standard_normal_tail((std::log(x) - l.mu) / l.s);
+    }
+    case Kind::triangular:
+      if (x <= a) return 1;
+      if (x >= c) return 0;
+      return x <= b ? 1 - (x - a) * (x - a) / ((c - a) * (b - a)) : (c - x) * (c - x) / ((c - a) * (c - b));
+  }
+  return nan;
+}
+
+double Distribution::quantile(double u) const {
+  if (!truncated) return parent_quantile(u);
+  // The parent's quantile over [F(lo), F(hi)], from whichever tail keeps the probability small: for an interval in
+  // the upper tail, F(x) rounds to 1 long before x reaches a far hi (hi = 1e9 for "no upper limit"), 1 − F does not.
+  const double p = cdf_lo + u * (cdf_hi - cdf_lo);
+  double x = 0;
+  if (p <= 0.5) {
+    x = p > 0 ? parent_quantile(p) : lo;
+  } else {
+    const double q = survival_hi + (1 - u) * (survival_lo - survival_hi);
+    x = q > 0 ? parent_upper_quantile(q) : hi;
+  }
+  return std::clamp(x, lo, hi);
+}
+
 double Distribution::truncate(double lower, double upper) {
   truncated = false;
   lo = lower, hi = upper;
   cdf_lo = cdf(lower), cdf_hi = cdf(upper);
-  const double probability = cdf_hi - cdf_lo;
+  survival_lo = survival(lower), survival_hi = survival(upper);
+  const double probability = cdf_lo > 0.5 ? survival_lo - survival_hi : cdf_hi - cdf_lo;
   if (!(probability >= least_truncated_probability)) return probability;  // refused by the caller: nothing to sample
   truncated = true;
   // Moments of the truncated law as integrals of its quantile over u ∈ (0, 1): E[x] = ∫Q, var = ∫(Q − E[x])². Q is

@@ -21,11 +21,12 @@ struct Distribution {
   // Truncation to [lo, hi] (set by truncate()): samples are the parent's quantiles over [F(lo), F(hi)].
   bool truncated = false;
   double lo = 0, hi = 0;
-  double cdf_lo = 0, cdf_hi = 1, truncated_mean = 0, truncated_sd = 0;  // set by truncate()
+  double cdf_lo = 0, cdf_hi = 1, survival_lo = 1, survival_hi = 0, truncated_mean = 0, truncated_sd = 0;  // by truncate()
   double mean() const;
   double sd() const;
   double quantile(double u) const;  // u in (0, 1)
-  double cdf(double x) const;       // of the distribution before truncation
+  double cdf(double x) const;       // of the distribution before truncation: F(x)
+  double survival(double x) const;  // 1 − F(x), without cancellation in the upper tail
   // Restricts to [lo, hi] and returns the probability the parent gives that interval. Below
   // least_truncated_probability nothing is truncated (`truncated` stays false) and the caller refuses it.
   static constexpr double least_truncated_probability = 1e-6;
@@ -34,7 +35,8 @@ struct Distribution {
  private:
   double parent_mean() const;
   double parent_sd() const;
-  double parent_quantile(double u) const;
+  double parent_quantile(double u) const;        // x with F(x) = u
+  double parent_upper_quantile(double q) const;  // x with 1 − F(x) = q
 };
 
 struct VariedInput {
