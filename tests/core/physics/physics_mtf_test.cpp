@@ -2,6 +2,7 @@
 // autocorrelation of the pupil, O'Neill's (1956) closed form for the annulus, Boost bisection and brute-force
 // scans for the roots, and the numbers Kolobrodov 1996 prints (eqs. 11, 12, 15).
 #include "radchain/physics/mtf.hpp"
+#include "mtf_references.hpp"
 
 #include <gtest/gtest.h>
 
@@ -47,22 +48,6 @@ double numerical_pupil_otf(double d, double e, int rows = 200000) {
   return area * h / (pi * (1 - e * e));
 }
 
-// O'Neill, J. Opt. Soc. Am. 46 (1956) 285: closed form of the annular-pupil MTF as the sum A + B + C over
-// (1 − ε²), x = ν/ν_c, φ = acos((1 + ε² − 4x²)/(2ε)) — a different route from the library's disc overlaps.
-double oneill_annular_mtf(double x, double e) {
-  const double a = x <= 1 ? 2 / pi * (std::acos(x) - x * std::sqrt(1 - x * x)) : 0.0;
-  const double b = (e > 0 && x <= e) ? 2 * e * e / pi * (std::acos(x / e) - x / e * std::sqrt(1 - x * x / (e * e))) : 0.0;
-  double c = 0;
-  if (x <= (1 - e) / 2) {
-    c = -2 * e * e;
-  } else if (x < (1 + e) / 2) {
-    const double phi = std::acos((1 + e * e - 4 * x * x) / (2 * e));
-    c = -2 * e * e + 2 * e / pi * std::sin(phi) + (1 + e * e) / pi * phi -
-        2 * (1 - e * e) / pi * std::atan((1 + e) / (1 - e) * std::tan(phi / 2));
-  }
-  return (a + b + c) / (1 - e * e);
-}
-
 // ---- Diffraction-limited objective ----------------------------------------------------------------------
 
 TEST(MtfDiffraction, CutoffIsOneOverLambdaN) {
@@ -95,7 +80,7 @@ TEST(MtfDiffraction, ObscuredMatchesONeillAndNumericalAutocorrelation) {
   for (double e : {0.1, 0.3, 0.5, 0.8}) {
     for (int i = 0; i <= 40; ++i) {
       const double x = i / 40.0;
-      EXPECT_NEAR(diffraction_mtf_normalized(x, e), oneill_annular_mtf(x, e), 1e-8) << "e = " << e << ", x = " << x;
+      EXPECT_NEAR(diffraction_mtf_normalized(x, e), radchain::test::oneill_annular_mtf(x, e), 1e-8) << "e = " << e << ", x = " << x;
     }
     for (double x : {0.07, 0.23, 0.41, 0.6, 0.77, 0.93})
       EXPECT_NEAR(diffraction_mtf_normalized(x, e), numerical_pupil_otf(2 * x, e), 2e-5) << "e = " << e << ", x = " << x;
