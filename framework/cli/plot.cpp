@@ -224,14 +224,20 @@ void draw(const std::string& png_path, const std::function<void(std::ostream&)>&
   static std::atomic<int> counter{0};
   const fs::path dir = fs::temp_directory_path() / fmt::format("radchain-plot-{}-{}", ::getpid(), counter++);
   fs::create_directories(dir);
-  const fs::path data = dir / "data.tsv", script_path = dir / "plot.gp", log = dir / "gnuplot.log";
-  // The data and the script: a write that fails (a full /tmp, a file size limit) would make gnuplot draw a cut
-  // curve without complaint, so each goes through AtomicFile, whose commit reports the failure and its reason.
+  const fs::path data = dir / "data.tsv", log = dir / "gnuplot.log";
+  auto script_path = [&](const std::string& terminal) { return dir / ("plot-" + terminal + ".gp"); };
+  // The data and the scripts (one per terminal tried), all written before gnuplot runs: a write that fails (a full
+  // /tmp, a file size limit) would make gnuplot draw a cut curve without complaint, so each goes through
+  // AtomicFile, and its failure is reported as the plot's (naming the PNG asked for), with the reason.
   auto written = [&](const fs::path& path, const std::function<void(std::ostream&)>& fill) {
     try {
       AtomicFile file(path.string(), "--plot");
       fill(file.stream());
       file.commit();
+    } catch (const WriteError& error) {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+      throw WriteError("cannot write " + png_path + ": its " + path.filename().string() + " for gnuplot: " + error.what());
     } catch (...) {
       std::error_code ec;
       fs::remove_all(dir, ec);
@@ -239,9 +245,10 @@ void draw(const std::string& png_path, const std::function<void(std::ostream&)>&
     }
   };
   written(data, write_data);
+  for (const char* terminal : {"pngcairo", "png"})
+    written(script_path(terminal), [&](std::ostream& gp) { gp << head(terminal) << script; });
   auto run = [&](const std::string& terminal) {
-    written(script_path, [&](std::ostream& gp) { gp << head(terminal) << script; });
-    std::vector<std::string> all = {"-c", script_path.string(), png.temporary_path(), data.string()};
+    std::vector<std::string> all = {"-c", script_path(terminal).string(), png.temporary_path(), data.string()};
     all.insert(all.end(), arguments.begin(), arguments.end());
     return run_gnuplot(all, log);
   };

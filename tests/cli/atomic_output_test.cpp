@@ -172,6 +172,7 @@ TEST(AtomicOutput, ImagesTablesAndPlotsUnderAFileSizeLimit) {
   struct Case {
     std::string file, command;  // the command writes `file` (in the scratch folder), larger than `limit_bytes`
     std::uintmax_t limit_bytes;
+    std::string reason = "";    // what the error line must also say
   };
   const std::vector<Case> cases = {
       {"frame.fits", sbv_frame + " --width 256 --height 256 --out '" + (scratch / "frame.fits").string() + "'", 8192},
@@ -180,10 +181,12 @@ TEST(AtomicOutput, ImagesTablesAndPlotsUnderAFileSizeLimit) {
                           (scratch / "preview.tif").string() + "'", 20000},
       {"scene.tif", "render '" + kolobrodov + "' --out '" + (scratch / "scene.tif").string() + "'", 8192},
       {"mtf.csv", "mtf '" + worldview + "' --out '" + (scratch / "mtf.csv").string() + "'", 8192},
-      {"mtf.png", "mtf '" + worldview + "' --out /dev/null --plot '" + (scratch / "mtf.png").string() + "'", 8192},
-      {"sweep.png", small_sweep + " --out /dev/null --plot '" + (scratch / "sweep.png").string() + "'", 8192},
+      // the MTF curves' data file (201 rows) is larger than the limit: refused before gnuplot runs
+      {"mtf.png", "mtf '" + worldview + "' --out /dev/null --plot '" + (scratch / "mtf.png").string() + "'", 8192, "data.tsv for gnuplot"},
+      // small data, a PNG larger than the limit: gnuplot writes a cut PNG and exits 0; the IEND check refuses it
+      {"sweep.png", small_sweep + " --out /dev/null --plot '" + (scratch / "sweep.png").string() + "'", 8192, "no IEND chunk"},
       {"hist.png", "uncertainty '" + sbv_file + "' --vary 'optics.transmittance=normal(0.56, 0.02)' --results target.magnitude "
-                   "--samples 200 --plot '" + (scratch / "hist.png").string() + "'", 8192},
+                   "--samples 200 --plot '" + (scratch / "hist.png").string() + "'", 8192, "no IEND chunk"},
   };
   for (const Case& k : cases) {
     const fs::path target = scratch / k.file;
@@ -194,7 +197,9 @@ TEST(AtomicOutput, ImagesTablesAndPlotsUnderAFileSizeLimit) {
     const CliResult r = run_shell(scratch, "trap '' XFSZ; exec prlimit --fsize=" + std::to_string(k.limit_bytes) + " '" + cli + "' " + k.command);
     EXPECT_EQ(r.exit_code, 3) << k.command << "\n" << r.err;
     EXPECT_EQ(count_lines(r.err), 1u) << k.command << "\n" << r.err;
-    EXPECT_NE(r.err.find("cannot write"), std::string::npos) << k.command << "\n" << r.err;
+    // the line names the file asked for (not a temporary) and, where given, why
+    EXPECT_EQ(r.err.rfind("radchain: cannot write " + target.string(), 0), 0u) << k.command << "\n" << r.err;
+    EXPECT_NE(r.err.find(k.reason), std::string::npos) << k.command << "\n" << r.err;
     EXPECT_EQ(read_text(target), "previous contents\n") << k.file;
     EXPECT_TRUE(leftovers(scratch).empty()) << k.file;
   }

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -67,6 +68,13 @@ bool is_fits_path(const std::string& path) {
   return ext == "fits" || ext == "fit" || ext == "fts";
 }
 
+// A library call that failed on `path`. A failed write is a WriteError, like AtomicFile's (exit 3, "cannot write
+// <path>: <reason> (nothing written)": the temporary is discarded); a failed read is bad input at the caller.
+[[noreturn]] void failure(const std::string& what, const std::string& path, const std::string& detail) {
+  if (what == "cannot write") throw WriteError(what + " " + path + ": " + detail + " (nothing written)");
+  throw std::runtime_error(what + " \"" + path + "\": " + detail);
+}
+
 // A CFITSIO call that failed: its status as text, and the first message of its error stack.
 [[noreturn]] void fits_failure(const std::string& what, const std::string& path, int status) {
   char text[FLEN_STATUS] = {}, message[FLEN_ERRMSG] = {};
@@ -74,7 +82,7 @@ bool is_fits_path(const std::string& path) {
   std::string detail = text;
   if (fits_read_errmsg(message)) detail += std::string(" (") + message + ")";
   fits_clear_errmsg();
-  throw std::runtime_error(what + " \"" + path + "\": " + detail);
+  failure(what, path, detail);
 }
 
 // The picture's rows bottom-up (FITS stores the bottom row first), converted to T.
@@ -117,7 +125,7 @@ double widened(const unsigned char* bytes) {
 }
 
 [[noreturn]] void oiio_failure(const std::string& what, const std::string& path, const std::string& detail) {
-  throw std::runtime_error(what + " \"" + path + "\": " + (detail.empty() ? OIIO::geterror() : detail));
+  failure(what, path, detail.empty() ? OIIO::geterror() : detail);
 }
 
 }  // namespace
@@ -265,66 +273,81 @@ HeaderCard typed_card(const RawCard& raw) {
   return card;
 }
 
+// The primary header's 80-character cards up to END (FITS Standard 4.0 §4.1), and how many 2880-byte blocks the
+// header fills; `ended` is false when the file has no END card.
+struct RawHeader {
+  std::vector<std::string> cards;
+  std::size_t blocks = 0;
+  bool ended = false;
+};
+RawHeader raw_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read \"" + path + "\"");
+  RawHeader header;
+  std::string block(2880, ' ');
+  while (!header.ended && in.read(block.data(), 2880)) {
+    ++header.blocks;
+    for (std::size_t c = 0; c < 36; ++c) {
+      std::string card = block.substr(c * 80, 80);
+      if (card.compare(0, 8, "END     ") == 0) {
+        header.ended = true;
+        break;
+      }
+      header.cards.push_back(std::move(card));
+    }
+  }
+  return header;
+}
+
 // The primary HDU's structure checked before CFITSIO opens the file (FITS Standard 4.0, §3.1: a file is a whole
 // number of 2880-byte blocks; §4.4.1.1: SIMPLE, BITPIX, NAXIS, NAXISn are the first cards; the data follow the
 // header's END block and fill ⌈|BITPIX|/8 · Π NAXISn / 2880⌉ blocks). A truncated or malformed file is refused here
 // with its reason: CFITSIO 4.2 leaks its handle when ffopen fails on such a file (scene_fits_fuzz, seed 1).
+// radchain reads the primary image only: a file whose image is in an extension (NAXIS = 0 here) is refused.
 void check_fits_structure(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw std::runtime_error("cannot read \"" + path + "\"");
-  const auto size = static_cast<std::uintmax_t>(in.tellg());
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw std::runtime_error("cannot read \"" + path + "\": " + ec.message());
   auto refuse = [&](const std::string& why) { throw std::runtime_error("cannot read \"" + path + "\": " + why); };
   if (size == 0 || size % 2880 != 0)
     refuse(std::to_string(size) + " bytes: not a whole number of 2880-byte FITS blocks (truncated, or not FITS)");
-  in.seekg(0);
-  std::string block(2880, ' ');
-  std::size_t header_blocks = 0, card_index = 0;
-  long long bitpix = 0, naxis = -1, naxis1 = -1, naxis2 = -1;
-  auto integer = [&](const std::string& card, const char* key) {
-    const std::string text = card.substr(10, 20);
-    std::size_t used = 0;
-    long long v = 0;
-    try {
-      v = std::stoll(text, &used);
-    } catch (const std::exception&) {
-      refuse(std::string(key) + " is not an integer");
-    }
-    if (text.find_first_not_of(' ', used) != std::string::npos) refuse(std::string(key) + " is not an integer");
-    return v;
-  };
+  const RawHeader header = raw_header(path);
+  if (!header.ended) refuse("no END card (not a FITS file)");
+  // The mandatory cards in order, each "KEY     = " and an integer (SIMPLE: T) right-justified in columns 11-30.
   const char* mandatory[] = {"SIMPLE", "BITPIX", "NAXIS", "NAXIS1", "NAXIS2"};
-  bool ended = false;
-  while (!ended && in.read(block.data(), 2880)) {
-    ++header_blocks;
-    for (std::size_t c = 0; c < 36 && !ended; ++c, ++card_index) {
-      const std::string card = block.substr(c * 80, 80);
-      std::string key = card.substr(0, 8);
-      key.erase(key.find_last_not_of(' ') + 1);
-      if (key == "END") {
-        ended = true;
-        break;
-      }
-      if (card_index >= std::min<std::size_t>(std::size(mandatory), static_cast<std::size_t>(3 + std::max(naxis, 0LL)))) continue;
-      if (key != mandatory[card_index] || card.compare(8, 2, "= ") != 0)
-        refuse("card " + std::to_string(card_index + 1) + " is \"" + key + "\", expected " + mandatory[card_index] + " = (FITS §4.4.1.1)");
-      if (card_index == 0 && card.substr(10, 20).find_first_not_of(' ') != 19) refuse("SIMPLE is not T");
-      if (card_index == 0 && card[29] != 'T') refuse("SIMPLE is not T");
-      if (card_index == 1) bitpix = integer(card, "BITPIX");
-      if (card_index == 2) naxis = integer(card, "NAXIS");
-      if (card_index == 3) naxis1 = integer(card, "NAXIS1");
-      if (card_index == 4) naxis2 = integer(card, "NAXIS2");
+  long long value[5] = {0, 0, 0, 0, 0};
+  for (std::size_t i = 0; i < 5; ++i) {
+    if (i >= header.cards.size()) refuse(std::string("the mandatory ") + mandatory[i] + " card is missing (FITS §4.4.1.1)");
+    const std::string& card = header.cards[i];
+    std::string key = card.substr(0, 8);
+    key.erase(key.find_last_not_of(' ') + 1);
+    if (key != mandatory[i] || card.compare(8, 2, "= ") != 0)
+      refuse("card " + std::to_string(i + 1) + " is \"" + key + "\", expected " + mandatory[i] + " = (FITS §4.4.1.1)");
+    const std::string text = card.substr(10, 20);
+    if (i == 0) {
+      if (text.find_first_not_of(' ') != 19 || text[19] != 'T') refuse("SIMPLE is not T");
+      continue;
     }
+    std::size_t used = 0;
+    try {
+      value[i] = std::stoll(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || text.find_first_not_of(' ', used) != std::string::npos) refuse(std::string(mandatory[i]) + " is not an integer");
+    // Each refused as soon as it is read: later arithmetic then only sees small, valid numbers.
+    const long long bitpix = value[1];
+    if (i == 1 && bitpix != 8 && bitpix != 16 && bitpix != 32 && bitpix != 64 && bitpix != -32 && bitpix != -64)
+      refuse("BITPIX = " + std::to_string(bitpix) + ": not a FITS pixel type");
+    if (i == 2 && value[2] == 0) refuse("the primary HDU holds no image (NAXIS = 0); images in extensions are not read");
+    if (i == 2 && value[2] != 2) refuse("not a 2-D image (NAXIS = " + std::to_string(value[2]) + ")");
+    constexpr long long max_side_px = 16384;  // render's limit: larger claims are refused before anything is allocated
+    if (i >= 3 && (value[i] < 1 || value[i] > max_side_px))
+      refuse(std::string(mandatory[i]) + " = " + std::to_string(value[i]) + ": 1 to 16384 pixels a side");
   }
-  if (!ended) refuse("no END card (not a FITS file)");
-  if (bitpix != 8 && bitpix != 16 && bitpix != 32 && bitpix != 64 && bitpix != -32 && bitpix != -64)
-    refuse("BITPIX = " + std::to_string(bitpix) + ": not a FITS pixel type");
-  if (naxis != 2) refuse("not a 2-D image (NAXIS = " + std::to_string(naxis) + ")");
-  constexpr long long max_side_px = 16384;  // render's limit: larger claims are refused before anything is allocated
-  if (naxis1 < 1 || naxis2 < 1 || naxis1 > max_side_px || naxis2 > max_side_px)
-    refuse(std::to_string(naxis1) + " x " + std::to_string(naxis2) + " pixels: 1 to 16384 a side");
-  const std::uintmax_t data_bytes = static_cast<std::uintmax_t>(std::llabs(bitpix) / 8) * static_cast<std::uintmax_t>(naxis1) *
-                                    static_cast<std::uintmax_t>(naxis2);
-  const std::uintmax_t needed = (header_blocks + (data_bytes + 2879) / 2880) * 2880;
+  const std::uintmax_t data_bytes = static_cast<std::uintmax_t>(std::llabs(value[1]) / 8) * static_cast<std::uintmax_t>(value[3]) *
+                                    static_cast<std::uintmax_t>(value[4]);
+  const std::uintmax_t needed = (header.blocks + (data_bytes + 2879) / 2880) * 2880;
   if (size < needed) refuse(std::to_string(size) + " bytes, but its header declares " + std::to_string(needed) + " (truncated)");
 }
 
@@ -334,7 +357,7 @@ ImageFile read_fits(const std::string& path) {
   int status = 0, bitpix = 0, naxis = 0;
   long axes[2] = {0, 0};
   fitsfile* fits = nullptr;
-  if (fits_open_image(&fits, path.c_str(), READONLY, &status)) fits_failure("cannot read", path, status);
+  if (fits_open_file(&fits, path.c_str(), READONLY, &status)) fits_failure("cannot read", path, status);  // the primary HDU
   fits_get_img_param(fits, 2, &bitpix, &naxis, axes, &status);
   if (!status && (naxis != 2 || axes[0] < 1 || axes[1] < 1)) {
     fits_close_file(fits, &status);
@@ -342,7 +365,7 @@ ImageFile read_fits(const std::string& path) {
   }
   ImageFile file;
   file.format = "fits";
-  file.pixel_type = bitpix == 8 ? "uint8" : bitpix == 16 ? "int16" : bitpix == 32 ? "int32" : bitpix == -64 ? "double" : "float";
+  file.pixel_type = bitpix == 8 ? "uint8" : bitpix == 16 ? "int16" : bitpix == 32 ? "int32" : bitpix == 64 ? "int64" : bitpix == -64 ? "double" : "float";
   const int w = static_cast<int>(axes[0]), h = static_cast<int>(axes[1]);
   std::vector<double> values(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   int any_null = 0;
@@ -431,48 +454,43 @@ Image read_reflectance_map(const std::string& path) {
 }
 
 std::vector<RawCard> read_fits_header_cards(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read \"" + path + "\"");
+  const RawHeader header = raw_header(path);
+  if (!header.ended) throw std::runtime_error("\"" + path + "\": no END card (not a FITS file)");
   std::vector<RawCard> cards;
-  std::string block(2880, ' ');
-  while (in.read(block.data(), 2880)) {
-    for (std::size_t c = 0; c < 36; ++c) {
-      const std::string card = block.substr(c * 80, 80);
-      RawCard raw;
-      raw.key = card.substr(0, 8);
-      raw.key.erase(raw.key.find_last_not_of(' ') + 1);
-      if (raw.key == "END") return cards;
-      if (card.compare(8, 2, "= ") == 0) {
-        std::string rest = card.substr(10);
-        std::size_t i = rest.find_first_not_of(' ');
-        if (i != std::string::npos && rest[i] == '\'') {
-          std::size_t j = i + 1;
-          while (j < rest.size()) {
-            if (rest[j] == '\'' && (j + 1 >= rest.size() || rest[j + 1] != '\'')) break;
-            j += rest[j] == '\'' ? 2 : 1;
-          }
-          raw.value = rest.substr(i, std::min(j + 1, rest.size()) - i);
-          rest = rest.substr(std::min(j + 1, rest.size()));
-          const auto slash = rest.find('/');
-          if (slash != std::string::npos) raw.comment = rest.substr(slash + 1);
-        } else {
-          const auto slash = rest.find('/');
-          raw.value = rest.substr(0, slash);
-          if (slash != std::string::npos) raw.comment = rest.substr(slash + 1);
+  for (const std::string& card : header.cards) {
+    RawCard raw;
+    raw.key = card.substr(0, 8);
+    raw.key.erase(raw.key.find_last_not_of(' ') + 1);
+    if (card.compare(8, 2, "= ") == 0) {
+      std::string rest = card.substr(10);
+      std::size_t i = rest.find_first_not_of(' ');
+      if (i != std::string::npos && rest[i] == '\'') {
+        std::size_t j = i + 1;
+        while (j < rest.size()) {
+          if (rest[j] == '\'' && (j + 1 >= rest.size() || rest[j + 1] != '\'')) break;
+          j += rest[j] == '\'' ? 2 : 1;
         }
+        raw.value = rest.substr(i, std::min(j + 1, rest.size()) - i);
+        rest = rest.substr(std::min(j + 1, rest.size()));
+        const auto slash = rest.find('/');
+        if (slash != std::string::npos) raw.comment = rest.substr(slash + 1);
       } else {
-        raw.comment = card.substr(8);
+        const auto slash = rest.find('/');
+        raw.value = rest.substr(0, slash);
+        if (slash != std::string::npos) raw.comment = rest.substr(slash + 1);
       }
-      auto trim = [](std::string& s) {
-        s.erase(0, std::min(s.size(), s.find_first_not_of(' ')));
-        s.erase(s.find_last_not_of(' ') + 1);
-      };
-      trim(raw.value);
-      trim(raw.comment);
-      if (!raw.key.empty()) cards.push_back(std::move(raw));
+    } else {
+      raw.comment = card.substr(8);
     }
+    auto trim = [](std::string& s) {
+      s.erase(0, std::min(s.size(), s.find_first_not_of(' ')));
+      s.erase(s.find_last_not_of(' ') + 1);
+    };
+    trim(raw.value);
+    trim(raw.comment);
+    if (!raw.key.empty()) cards.push_back(std::move(raw));
   }
-  throw std::runtime_error("\"" + path + "\": no END card (not a FITS file)");
+  return cards;
 }
 
 void write_preview(const std::string& path, const Image& image, const PreviewOptions& options) {
