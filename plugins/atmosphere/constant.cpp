@@ -12,7 +12,7 @@ const Schema& schema() {
       flag("down_path").fallback("true")
           .described("the source's light crosses the atmosphere before reaching the target (false for objects in space)"),
       quantity("path_radiance", "W m-2 sr-1", "0 W/(m2 sr)").fallback("0 W/(m2 sr)").at_least(0).affects_spectrum()
-          .described("in-band path radiance added to the scene background (needs the source's reporting band)"),
+          .described("in-band path radiance at the sensor, spread flat over the source's reporting band (band_min/band_max); an extended scene's detector adds it to the scene"),
   };
   return s;
 }

@@ -57,7 +57,8 @@
 // atmosphere: dL/dρ = L̄/ρ for reflectance_ground, whose path radiance does not enter the signal),
 // detector.saturation_radiance L_sat = (min(μ_e.sat, (2^bits−1)/K) − N_tdi μ_I t) / k, and the scene pixel's
 // fill. Limits: τ is the optics' scalar transmittance (a transmittance_curve is folded into the scene spectrum
-// and then weights the scene's L̄ as well); on axis (no cos⁴ fall-off); path radiance not in the signal.
+// and then weights the scene's L̄ as well); on axis (no cos⁴ fall-off). The atmosphere's path radiance is part of
+// the scene's radiance (signal, noise, fill, L_ref from a reflectance) but not of dS/dρ (NEΔρ).
 #include "radchain/physics/emva1288.hpp"
 #include "radchain/physics/magnitudes.hpp"
 #include "radchain/physics/photometry.hpp"
@@ -399,6 +400,9 @@ class Emva1288 final : public Stage {
     const Spectrum flat = Spectrum::sampled(Eigen::ArrayXd::LinSpaced(2001, lo, hi), [](double) { return 1.0; },
                                             "W m-2 m-1");
     flat_photon_integral_ = physics::photon_rate(flat, lo, hi, qe_curve);
+    // The atmosphere's path radiance L_path,λ (W m-2 sr-1 m-1), already at the sensor: added to the scene's radiance
+    // (L = τ↑ ρ E cos θ_s τ↓/π + L_path, Schott 2007 §4.1) and counted by the same étendue; ∫ L_path η λ/(hc) dλ here.
+    path_photon_rate_ = c.light.path_radiance.empty() ? 0.0 : physics::photon_rate(c.light.path_radiance, lo, hi, qe_curve);
     f_number_ = c.find(vocabulary::optics_f_number);
     obscuration_ = c.find(vocabulary::optics_obscuration);
     transmittance_ = c.find(vocabulary::optics_transmittance);
@@ -410,7 +414,7 @@ class Emva1288 final : public Stage {
     reference_given_ = params_.given("reference_radiance");
     reference_from_reflectance_ = params_.given("reference_reflectance");
     const char* ref_how = params_.given("reference_radiance")      ? "input L_ref"
-                          : params_.given("reference_reflectance") ? "ρ_ref × L̄_scene / ρ (the target's sun and atmosphere)"
+                          : params_.given("reference_reflectance") ? "ρ_ref × L̄_surface / ρ + L̄_path (the target's sun and atmosphere)"
                                                                    : "L̄_scene (no reference given: the scene itself)";
 
     id_signal_ = c.declare(vocabulary::detector_signal_electrons,
@@ -438,7 +442,9 @@ class Emva1288 final : public Stage {
                          "W m-2 sr-1 um-1");
     if (reflectance_)
       id_nedrho_ = c.declare(vocabulary::detector_noise_equivalent_reflectance,
-                             "noise(L_ref) / (dS/dρ) = noise(L_ref) ρ / S (at the target's sun angle)");
+                             "noise(L_ref) / (dS/dρ) = noise(L_ref) ρ / S_surface (at the target's sun angle)");
+    id_path_electrons_ = c.declare("path_radiance_electrons", "electron",
+                                   "M b² k L̄_path: the atmosphere's path radiance in the scene's pixel (0 without one)", "e-");
     id_saturation_radiance_ = c.declare(vocabulary::detector_saturation_radiance,
                                         "(min(μ_e.sat, (2^bits−1)/K) − N_tdi μ_I t) / k", "W m-2 sr-1 um-1");
     id_solid_angle_ = c.declare("pixel_solid_angle", "sr", "Ω = π (1 − ε²) / (4 N²): A_pixel Ω = A_pupil IFOV²");
@@ -465,12 +471,16 @@ class Emva1288 final : public Stage {
                                                                  obscuration_ ? a.value(*obscuration_) : 0.0);
     const double tau = transmittance_ ? a.value(*transmittance_) : 1.0;
     const double k = physics::radiance_responsivity_e(tdi, t, pitch, omega, tau, qe * flat_photon_integral_);
-    // The scene: one native pixel, one exposure (the focal irradiance already carries Ω τ).
-    const double scene_native = a.signal_scale() * qe * photon_rate_per_scale_ * t * tdi * pitch * pitch;
+    // The scene: one native pixel, one exposure (the focal irradiance already carries Ω τ): the surface's light
+    // plus the path radiance, which reaches the pupil as a radiance and is counted by the étendue A_pixel Ω τ.
+    const double surface_native = a.signal_scale() * qe * photon_rate_per_scale_ * t * tdi * pitch * pitch;
+    const double path_native = physics::radiance_responsivity_e(tdi, t, pitch, omega, tau, qe * path_photon_rate_);
+    const double scene_native = surface_native + path_native;
     const double scene_radiance = scene_native / k;
     double reference = scene_radiance;
     if (reference_given_) reference = *reference_radiance_;
-    else if (reference_from_reflectance_) reference = *reference_reflectance_ * scene_radiance / a.value(*reflectance_);
+    else if (reference_from_reflectance_)
+      reference = (*reference_reflectance_ * surface_native / a.value(*reflectance_) + path_native) / k;
 
     const double dark_native = tdi * *dark_current_ * t;
     const double quant_var = physics::emva_quantisation_variance_e2(gain);
@@ -497,7 +507,9 @@ class Emva1288 final : public Stage {
     a.set(id_reference_signal_, m * reference1);
     a.set(id_reference_snr_, m * reference1 / reference_noise);
     a.set(id_nedl_, reference_noise / (m * b * b * k));
-    if (id_nedrho_) a.set(*id_nedrho_, reference_noise * a.value(*reflectance_) / (m * signal1));
+    // dS/dρ = S_surface/ρ: the path radiance does not change with the ground's reflectance.
+    if (id_nedrho_) a.set(*id_nedrho_, reference_noise * a.value(*reflectance_) / (m * b * b * surface_native));
+    a.set(id_path_electrons_, m * b * b * path_native);
     a.set(id_saturation_radiance_, saturation_radiance);
     if (!a.full_detail()) return;
     a.set(id_gain_, gain);
@@ -526,7 +538,8 @@ class Emva1288 final : public Stage {
   ResultId id_bits_{}, id_dark_rate_{}, id_read_pixel_{}, id_target_streak_{}, id_star_streak_{}, id_streak_angle_{}, id_static_neff_{}, id_trailing_loss_{};
   bool extended_ = false, reference_given_ = false, reference_from_reflectance_ = false;
   const double *reference_radiance_, *reference_reflectance_;
-  double photon_rate_per_scale_ = 0, ab_electrons_per_m2_s_ = 0, flat_photon_integral_ = 0;
+  double photon_rate_per_scale_ = 0, ab_electrons_per_m2_s_ = 0, flat_photon_integral_ = 0, path_photon_rate_ = 0;
+  ResultId id_path_electrons_{};
   std::optional<ResultId> reflectance_, id_nedrho_;
   ResultId id_pitch_{}, id_scene_radiance_{}, id_reference_radiance_{}, id_reference_signal_{}, id_reference_snr_{},
       id_nedl_{}, id_saturation_radiance_{}, id_solid_angle_{}, id_etendue_{}, id_responsivity_{}, id_qe_integral_{},

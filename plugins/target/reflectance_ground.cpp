@@ -5,8 +5,8 @@
 // surface, no adjacency or sky-light term; Schowengerdt 2007 §2.4). E_λ is the source's irradiance at normal
 // incidence (τ↓ applied by the atmosphere's down path), so θ_s enters only through cos θ_s here. The signal is
 // the whole target radiance (as an SNR at L_ref counts it), the background a ground of `background_reflectance`.
-// The path radiance is reported in at_aperture_radiance; it is not yet added to the signal spectrum (no stage
-// downstream reads light.path_radiance today: docs/eo-imagers.md).
+// The path radiance stays in light.path_radiance (it is not ∝ ρ or the sun's scale): reported in
+// at_aperture_radiance here, and added to the scene's pixel by the detector (emva1288) through the same étendue.
 // Kolobrodov's contrast target stays lambertian_ground.
 #include "radchain/plugin.hpp"
 

@@ -37,7 +37,8 @@ std::string with_defaults(const std::string& detector) {
 
 // A ground of reflectance 0.25 under the Sun at 60° (no atmosphere) seen through a 10 cm f/8 telescope
 // (τ = 0.8) by a datasheet camera in 630-690 nm. `detector` lines are appended to the detector section.
-std::string write_sensor(const std::string& name, const std::string& detector, const std::string& target_extra = "") {
+std::string write_sensor(const std::string& name, const std::string& detector, const std::string& target_extra = "",
+                         const std::string& atmosphere = "plugin = \"none\"\n", const std::string& source_extra = "") {
   const std::string text = R"([sensor]
 name = "emva1288 extended-scene test"
 [platform]
@@ -45,8 +46,9 @@ plugin = "earth_orbit"
 altitude = "700 km"
 [source]
 plugin = "sun"
+)" + source_extra + R"(
 [atmosphere]
-plugin = "none"
+)" + atmosphere + R"(
 [target]
 plugin = "reflectance_ground"
 reflectance = 0.25
@@ -273,6 +275,58 @@ plugin = "unsaturated"
   }
   std::filesystem::remove(path);
   EXPECT_NE(what.find("reflectance_ground"), std::string::npos) << what;
+}
+
+// Path radiance (issue 14 item 2): L = τ↑ ρ E cos θ_s τ↓/π + L_path (Schott 2007 §4.1). The atmosphere's path
+// radiance reaches the pupil as a radiance, so the pixel counts it through the same étendue: k L̄_path more
+// electrons, by hand; the reflectance's derivative (NEΔρ) and a reference given as a reflectance count the surface
+// part only. A flat 5 W m-2 sr-1 over the 630-690 nm band (`constant`, τ = 1) and a tabulated ramp.
+TEST(Emva1288Extended, PathRadianceJoinsTheSceneThroughTheEtendue) {
+  const std::string band = "band_min = \"0.63 um\"\nband_max = \"0.69 um\"\n";
+  const std::string clear = "plugin = \"constant\"\ntransmittance = 1\n";
+  const Report without = run(write_sensor("nopath", "reference_reflectance = 0.5", "", clear, band));
+  const Report with = run(write_sensor("path", "reference_reflectance = 0.5", "", clear + "path_radiance = \"5 W/(m2 sr)\"\n", band));
+  const double path_radiance = 5.0 / (hi - lo);  // W m-2 sr-1 m-1, flat over the band
+  const double path_electrons = k_by_hand() * path_radiance;
+  EXPECT_NEAR(v(with, "detector.path_radiance_electrons"), path_electrons, 1e-9 * path_electrons);
+  EXPECT_EQ(v(without, "detector.path_radiance_electrons"), 0.0);
+  EXPECT_NEAR(v(with, "detector.signal_electrons") - v(without, "detector.signal_electrons"), path_electrons, 1e-9 * path_electrons);
+  EXPECT_NEAR(v(with, "detector.scene_radiance") - v(without, "detector.scene_radiance"), path_radiance, 1e-9 * path_radiance);
+  EXPECT_NEAR(v(with, "target.at_aperture_radiance") - v(with, "target.surface_radiance_at_aperture"), 5.0, 1e-12);
+  // L_ref = ρ_ref/ρ L̄_surface + L̄_path; NEΔρ = noise(L_ref) ρ / S_surface.
+  const double surface = v(without, "detector.scene_radiance");
+  EXPECT_NEAR(v(with, "detector.reference_radiance"), 2.0 * surface + path_radiance, 1e-9 * surface);
+  const double s_surface = k_by_hand() * surface, s_ref = k_by_hand() * (2.0 * surface + path_radiance);
+  const double noise_ref = s_ref / snr_by_hand(s_ref);
+  EXPECT_NEAR(v(with, "detector.noise_equivalent_reflectance"), noise_ref * 0.25 / s_surface, 1e-4 * noise_ref * 0.25 / s_surface);
+  EXPECT_GT(v(with, "detector.noise_equivalent_reflectance"), v(without, "detector.noise_equivalent_reflectance"));
+
+  // A tabulated path radiance (as an RT code writes it): L_path = 0.05 + 0.001 (λ/nm − 600) W m-2 sr-1 nm-1 every
+  // nm over 600-700 nm, τ = 1. Electrons: t p² Ω τ qe ∫ L_path λ/(hc) dλ over 630-690 nm in closed form; radchain's
+  // band integral is the trapezoid rule on the table's grid, whose error for the quadratic L λ is (1 nm)²/12 ×
+  // (L λ)''/(L λ) ≈ 2e-6 relative here (on a 2-point table it would be 0.8 %).
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string tau_file = (dir / ("radchain_tau_" + std::to_string(::getpid()) + ".csv")).string();
+  const std::string path_file = (dir / ("radchain_path_" + std::to_string(::getpid()) + ".csv")).string();
+  std::ofstream(tau_file) << "# test table: a clear atmosphere\nwavelength_nm,transmittance\n600,1\n700,1\n";
+  {
+    std::ofstream table_out(path_file);
+    table_out << "# test table: a linear path radiance\nwavelength_nm,path_radiance_W_m-2_sr-1_nm-1\n";
+    for (int nm = 600; nm <= 700; ++nm) table_out << nm << "," << 0.05 + 0.001 * (nm - 600) << "\n";
+  }
+  const Report table = run(write_sensor("pathtable", "", "",
+                                        "plugin = \"tabulated_transmittance\"\ntable = \"" + tau_file + "\"\npath_radiance = \"" +
+                                            path_file + "\"\n"));
+  std::filesystem::remove(tau_file);
+  std::filesystem::remove(path_file);
+  // L(λ) = A + B λ in W m-2 sr-1 m-1 (λ in m): A = (0.05 − 0.6) 1e9, B = 1e15; ∫ (A + Bλ) λ dλ = A (λ2² − λ1²)/2 + B (λ2³ − λ1³)/3.
+  const double A = (0.05 - 0.001 * 600) * 1e9, B = 0.001 * 1e18;
+  const double integral = A * (hi * hi - lo * lo) / 2 + B * (hi * hi * hi - lo * lo * lo) / 3;
+  const double omega = std::numbers::pi / (4.0 * 8.0 * 8.0);
+  const double by_hand = 2e-3 * 10e-6 * 10e-6 * omega * 0.8 * 0.5 * integral / hc;
+  EXPECT_NEAR(v(table, "detector.path_radiance_electrons"), by_hand, 1e-5 * by_hand);
+  // In band (no source band: 400-700 nm; the table is 0 below 600 nm): ∫ = 0.05 × 100 + 0.001 × 100²/2 = 10.
+  EXPECT_NEAR(v(table, "atmosphere.path_radiance"), 10.0, 1e-9);
 }
 
 }  // namespace
