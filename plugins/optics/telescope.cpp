@@ -79,6 +79,10 @@ class Telescope final : public LaneStage<Telescope> {
         background.spectrum = background.spectrum.product(params_.spectrum("transmittance_curve"), background.spectrum.unit());
       background.form = RadiationForm::focal_irradiance;
     }
+    // The atmosphere's path radiance enters the pupil beside the scene and crosses the same spectral transmittance
+    // (it stays a radiance: the detector that counts it applies the étendue and the scalar τ, as for the scene).
+    if (params_.has("transmittance_curve") && !c.light.path_radiance.empty())
+      c.light.path_radiance = c.light.path_radiance.product(params_.spectrum("transmittance_curve"), c.light.path_radiance.unit());
     id_area_ = c.declare(vocabulary::optics_collecting_area, "π D²/4 (1 - ε²)", "cm2");
     id_aperture_ = c.declare(vocabulary::optics_aperture, "input D", "cm");
     id_transmittance_ = c.declare(vocabulary::optics_transmittance, "input τ");

@@ -38,7 +38,8 @@ std::string with_defaults(const std::string& detector) {
 // A ground of reflectance 0.25 under the Sun at 60° (no atmosphere) seen through a 10 cm f/8 telescope
 // (τ = 0.8) by a datasheet camera in 630-690 nm. `detector` lines are appended to the detector section.
 std::string write_sensor(const std::string& name, const std::string& detector, const std::string& target_extra = "",
-                         const std::string& atmosphere = "plugin = \"none\"\n", const std::string& source_extra = "") {
+                         const std::string& atmosphere = "plugin = \"none\"\n", const std::string& source_extra = "",
+                         const std::string& optics_extra = "") {
   const std::string text = R"([sensor]
 name = "emva1288 extended-scene test"
 [platform]
@@ -59,6 +60,7 @@ plugin = "telescope"
 aperture = "10 cm"
 focal_length = "0.8 m"
 transmittance = 0.8
+)" + optics_extra + R"(
 [detector]
 plugin = "emva1288"
 )" + with_defaults(detector) + R"(
@@ -300,6 +302,13 @@ TEST(Emva1288Extended, PathRadianceJoinsTheSceneThroughTheEtendue) {
   const double noise_ref = s_ref / snr_by_hand(s_ref);
   EXPECT_NEAR(v(with, "detector.noise_equivalent_reflectance"), noise_ref * 0.25 / s_surface, 1e-4 * noise_ref * 0.25 / s_surface);
   EXPECT_GT(v(with, "detector.noise_equivalent_reflectance"), v(without, "detector.noise_equivalent_reflectance"));
+  // An optics transmittance curve (0.5 over the band) weights the path radiance as it weights the scene.
+  const std::string curve = (std::filesystem::temp_directory_path() / ("radchain_curve_" + std::to_string(::getpid()) + ".csv")).string();
+  std::ofstream(curve) << "# test table: a grey optics component\nwavelength_nm,transmittance\n600,0.5\n700,0.5\n";
+  const Report halved = run(write_sensor("pathcurve", "", "", clear + "path_radiance = \"5 W/(m2 sr)\"\n", band,
+                                         "transmittance_curve = [\"" + curve + "\"]\n"));
+  std::filesystem::remove(curve);
+  EXPECT_NEAR(v(halved, "detector.path_radiance_electrons"), 0.5 * path_electrons, 1e-9 * path_electrons);
 
   // A tabulated path radiance (as an RT code writes it): L_path = 0.05 + 0.001 (λ/nm − 600) W m-2 sr-1 nm-1 every
   // nm over 600-700 nm, τ = 1. Electrons: t p² Ω τ qe ∫ L_path λ/(hc) dλ over 630-690 nm in closed form; radchain's
