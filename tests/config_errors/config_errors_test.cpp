@@ -97,6 +97,7 @@ const Case cases[] = {
     {"streak_negative_rate"},
     {"streak_unknown_tracking"},
     {"streak_window_photometry"},
+    {"airmass_outside_lut"},
 };
 
 // How a case reads in test names and ctest listings (instead of a byte dump).

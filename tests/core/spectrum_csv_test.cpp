@@ -66,6 +66,10 @@ const Shipped shipped[] = {
     {"lsst_detector_throughputs1.9.csv", "1"},
     {"lsst_darksky_throughputs1.9.csv", "W m-2 sr-1 m-1"},
     {"tess_response_v2.0.csv", "1"},
+    {"lsst_atmos_aerosol_X10_throughputs1.9.csv", "1"},
+    {"lsst_atmos_aerosol_X15_throughputs1.9.csv", "1"},
+    {"lsst_atmos_aerosol_X20_throughputs1.9.csv", "1"},
+    {"lsst_atmos_aerosol_X25_throughputs1.9.csv", "1"},
 };
 
 TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {

@@ -1,0 +1,109 @@
+// An atmosphere given as a look-up table over airmass: τ(λ) from a radiative-transfer code at several airmasses
+// X₁ < X₂ < … (one table per node, e.g. the MODTRAN runs of lsst/throughputs atmos/atmos_XX_aerosol.dat), and
+// optionally the path radiance L_path,λ at the same nodes. Between two nodes the transmittance is interpolated
+// geometrically, τ = τ_i^(1−w) τ_{i+1}^w with w = (X − X_i)/(X_{i+1} − X_i), i.e. ln τ linear in X: exact where
+// the Bouguer-Lambert-Beer law holds (ln τ = −X κ), and closer than Beer's τ₁^X where it does not (saturated
+// molecular bands, multiple scattering: the reason RT codes are run per airmass). The path radiance is
+// interpolated linearly. No extrapolation: an airmass outside the nodes is refused.
+#include "radchain/curve_components.hpp"
+#include "radchain/plugin.hpp"
+#include "radchain/spectrum_csv.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace {
+using namespace radchain;
+
+const Schema& schema() {
+  static const Schema s = {
+      spectrum_file("tables", "1", "lsst_atmos_aerosol_X10_throughputs1.9.csv").as_list().needed()
+          .described("transmittance τ(λ) at each node airmass (one table per entry of `airmasses`, same order)"),
+      number("airmasses", "1.0").as_list().needed().at_least(1)
+          .described("the node airmasses of the tables, increasing (e.g. [1.0, 1.5, 2.0, 2.5])"),
+      number("airmass", "1.3").needed().at_least(1).affects_spectrum()
+          .described("the line of sight's airmass X, within the nodes (interpolated, never extrapolated)"),
+      spectrum_file("path_radiance_tables", "W m-2 sr-1 m-1", "path_radiance_X10.csv").as_list()
+          .described("path radiance at the sensor at each node (optional; same count and order as the tables)"),
+      flag("down_path").fallback("true")
+          .described("the source's light crosses the atmosphere before reaching the target (false for objects in space)"),
+  };
+  return s;
+}
+
+class AirmassLut final : public Stage {
+ public:
+  explicit AirmassLut(const Params& p) : params_(p) {
+    const std::vector<std::string>& tables = p.entry("tables").texts;
+    const std::vector<double>& nodes = p.entry("airmasses").numbers;
+    if (tables.size() < 2) p.reject("tables", "a look-up table needs at least two nodes");
+    if (nodes.size() != tables.size())
+      p.reject("airmasses", fmt::format("{} airmasses for {} tables: give one per table", nodes.size(), tables.size()));
+    for (std::size_t i = 1; i < nodes.size(); ++i)
+      if (!(nodes[i] > nodes[i - 1])) p.reject("airmasses", "the node airmasses must increase");
+    if (p.has("path_radiance_tables") && p.entry("path_radiance_tables").texts.size() != tables.size())
+      p.reject("path_radiance_tables", "give one path radiance table per transmittance table");
+    const double x = p.get("airmass");
+    if (x < nodes.front() || x > nodes.back())
+      p.reject("airmass", fmt::format("{:g} is outside the table's nodes [{:g}, {:g}] (no extrapolation)", x, nodes.front(), nodes.back()));
+  }
+
+  void prepare(Context& c) override {
+    const std::vector<std::string>& tables = params_.entry("tables").texts;
+    const std::vector<double>& nodes = params_.entry("airmasses").numbers;
+    const double x = params_.get("airmass");
+    std::size_t i = 0;
+    while (i + 2 < nodes.size() && x > nodes[i + 1]) ++i;
+    const double w = (x - nodes[i]) / (nodes[i + 1] - nodes[i]);
+    // On the lower node's grid (the tables of one RT run share theirs).
+    const Spectrum& below = cached_spectrum_csv(tables[i], "1").spectrum;
+    const Spectrum& above = cached_spectrum_csv(tables[i + 1], "1").spectrum;
+    const Eigen::ArrayXd& grid = below.wavelength_m();
+    const Eigen::ArrayXd tau_below = below.value().max(0.0), tau_above = above(grid).max(0.0);
+    const Eigen::ArrayXd tau = (tau_below > 0 && tau_above > 0).select(tau_below.pow(1 - w) * tau_above.pow(w), 0.0);
+    const Spectrum path(grid, tau, "1", Extrapolation::zero);
+    if (params_.flag("down_path")) c.light.illumination = c.light.illumination.product(path, c.light.illumination.unit());
+    c.light.up_path_transmittance =
+        c.light.up_path_transmittance.empty() ? path : c.light.up_path_transmittance.product(path, "1");
+    const double lo = c.light.has_report_band() ? c.light.report_band_min_m : 400e-9;
+    const double hi = c.light.has_report_band() ? c.light.report_band_max_m : 700e-9;
+    mean_tau_ = path.integral(lo, hi) / (hi - lo);
+    id_tau_ = c.declare("transmittance", "1", "band mean of τ_i^(1−w) τ_{i+1}^w over the reporting band (or 400-700 nm)");
+    id_airmass_ = c.declare(vocabulary::atmosphere_airmass, "input X (between the LUT's nodes)");
+    id_weight_ = c.declare("lut_weight", "1", fmt::format("w = (X − X_i)/(X_(i+1) − X_i) between the nodes {:g} and {:g}",
+                                                          nodes[i], nodes[i + 1]));
+    if (params_.has("path_radiance_tables")) {
+      const std::vector<std::string>& paths = params_.entry("path_radiance_tables").texts;
+      const Spectrum& l_below = cached_spectrum_csv(paths[i], "W m-2 sr-1 m-1").spectrum;
+      const Spectrum& l_above = cached_spectrum_csv(paths[i + 1], "W m-2 sr-1 m-1").spectrum;
+      const Eigen::ArrayXd& l_grid = l_below.wavelength_m();
+      c.light.path_radiance = Spectrum(l_grid, (1 - w) * l_below.value() + w * l_above(l_grid), "W m-2 sr-1 m-1");
+      path_in_band_ = c.light.path_radiance.integral(lo, hi);
+      id_path_ = c.declare("path_radiance", "W m-2 sr-1", "∫ L_path,λ dλ over the reporting band (or 400-700 nm)", "W/(m2 sr)");
+    }
+    weight_ = w;
+  }
+
+  void evaluate(Context& c) override {
+    c.results.set(id_tau_, mean_tau_);
+    c.results.set(id_airmass_, params_.get("airmass"));
+    c.results.set(id_weight_, weight_);
+    if (id_path_) c.results.set(*id_path_, path_in_band_);
+  }
+
+ private:
+  const Params& params_;
+  double mean_tau_ = 1, path_in_band_ = 0, weight_ = 0;
+  ResultId id_tau_{}, id_airmass_{}, id_weight_{};
+  std::optional<ResultId> id_path_;
+};
+
+}  // namespace
+
+RADCHAIN_PLUGIN(AirmassLut, {
+    .summary = "atmosphere as an RT look-up table over airmass: τ(λ) (and path radiance) per node, interpolated",
+    .reference = "Bouguer-Lambert-Beer law (ln τ linear in X between nodes); tables e.g. MODTRAN (lsst/throughputs atmos/)",
+    .schema = schema,
+    .publishes = {vocabulary::atmosphere_airmass},
+})
