@@ -25,6 +25,8 @@ const Schema& schema() {
           .described("pixels across the line, for the swath (default: the detector's line length, if published)"),
       choice("direction", {"geometric_mean", "across_track", "along_track", "worst", "nadir"}).fallback("geometric_mean")
           .described("which GSD must meet the requirement: √(across·along) (GIQE convention), one of them, the larger, or the nadir GSD"),
+      quantity("along_track_sampling", "m", "5 m").above(0)
+          .described("ground distance between lines when it is not the along-track GSD (an oversampling pushbroom, e.g. SPOT-5 HRS: 5 m lines for 10 m pixels): sets the line time"),
   };
   return s;
 }
@@ -57,7 +59,10 @@ class GsdRequirement final : public Stage {
     id_mean_ = c.declare("gsd_geometric_mean", "m", "√(GSD_across · GSD_along)", "m");
     id_required_ = c.declare("required_gsd", "m", "input", "m");
     id_margin_ = c.declare(vocabulary::criterion_margin, "GSD_required / GSD(" + direction_ + ") − 1");
-    id_line_time_ = c.declare("line_time", "s", "GSD_along / ground speed (square samples)", "ms");
+    id_line_time_ = c.declare("line_time", "s",
+                              params_.has("along_track_sampling") ? "along_track_sampling / ground speed"
+                                                                  : "GSD_along / ground speed (square samples)",
+                              "ms");
     if (params_.has("pixel_count") || fov_given_ || line_) {
       id_field_ = c.declare("angular_field", "rad", fov_given_ ? "input" : "2 atan(N p / 2f')", "deg");
       id_swath_ = c.declare("swath", "m", "great-circle distance between the line's edge pixels at the look", "km");
@@ -90,7 +95,10 @@ class GsdRequirement final : public Stage {
     c.results.set(id_mean_, mean);
     c.results.set(id_required_, *required_);
     c.results.set(id_margin_, *required_ / compared - 1.0);
-    c.results.set(id_line_time_, physics::line_time_s(along, c.results.value(speed_)));
+    // A pushbroom reads a line each time the ground moves one line spacing: the along-track GSD for square samples,
+    // or the given sampling distance for an oversampling camera.
+    const double spacing = params_.has("along_track_sampling") ? params_.get("along_track_sampling") : along;
+    c.results.set(id_line_time_, physics::line_time_s(spacing, c.results.value(speed_)));
     if (has_swath_) {
       const double length = line_ ? c.results.value(*line_) : fov_given_ ? 2 * f * std::tan(*fov_ / 2) : *count_ * p;
       const double half = fov_given_ ? *fov_ / 2 : physics::half_field_angle_rad(length, f);

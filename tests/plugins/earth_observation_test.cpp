@@ -6,11 +6,13 @@
 #include "radchain/physics/earth_geometry.hpp"
 #include "radchain/physics/giqe.hpp"
 
+#include "radchain/sensor_file.hpp"
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <string>
 #include <unistd.h>
@@ -43,6 +45,29 @@ TEST(EarthObservation, WorldView2At20DegreesMatchesTheClosedForm) {
   // the published 0.52 m at 20° (eoPortal) — the flat-Earth geometric mean would be 0.508 m
   EXPECT_NEAR(value(r, "criteria.gsd.gsd_geometric_mean"), 0.52, 0.005);
   EXPECT_GT(std::abs(h * ifov / std::pow(std::cos(theta), 1.5) - 0.52), 0.01);
+}
+
+// A pushbroom reads a line each time the ground moves one line spacing: the along-track GSD for square samples, or
+// the published sampling of an oversampling camera (SPOT-5 HRS: 5 m lines for 10 m pixels). Line time = spacing /
+// ground speed, the ground speed √(GM/(R+h)) R/(R+h) of a circular orbit over a non-rotating Earth.
+TEST(EarthObservation, LineTimeFromTheAlongTrackSampling) {
+  Chain chain = load_sensor(root + "sensors/spot-5-hrs-fore.toml");
+  const Report r = chain.run();
+  const double gm = 3.986004418e14, R = value(r, "platform.earth_radius"), h = value(r, "platform.altitude");
+  const double ground_speed = std::sqrt(gm / (R + h)) * R / (R + h);
+  EXPECT_NEAR(value(r, "platform.ground_speed"), ground_speed, 1e-6 * ground_speed);
+  EXPECT_NEAR(value(r, "criteria.gsd.line_time"), 5.0 / ground_speed, 1e-9 * 5.0 / ground_speed);
+  // Without the key: square samples, the along-track GSD at the look.
+  Chain square = load_sensor_text(
+      [&] {
+        std::ifstream in(root + "sensors/spot-5-hrs-fore.toml");
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const auto at = text.find("along_track_sampling");
+        return text.erase(at, text.find('\n', at) - at);
+      }(),
+      root + "sensors/spot-5-hrs-fore.toml");
+  const Report s = square.run();
+  EXPECT_NEAR(value(s, "criteria.gsd.line_time"), value(s, "criteria.gsd.gsd_along_track") / ground_speed, 1e-9);
 }
 
 TEST(EarthObservation, LookPastTheHorizonIsAnInputError) {
