@@ -13,6 +13,7 @@
 #include "radchain/physics/giqe.hpp"
 #include "radchain/physics/mtf_budget.hpp"
 #include "radchain/physics/pushbroom.hpp"
+#include "radchain/look.hpp"
 #include "radchain/plugin.hpp"
 
 #include <cmath>
@@ -45,7 +46,7 @@ const Schema& schema() {
 class Giqe final : public Stage {
  public:
   explicit Giqe(const Params& p)
-      : params_(p), required_(p.handle("niirs")), pitch_(p.handle("pixel_pitch")), wavelength_(p.handle("wavelength")),
+      : params_(p), required_(p.handle("niirs")), wavelength_(p.handle("wavelength")),
         jitter_(p.handle("jitter_rms")), smear_(p.handle("smear_pixels")), diffusion_(p.handle("diffusion_rms")),
         wfe_(p.handle("wavefront_error")), tdi_stages_(p.handle("tdi_stages")), tdi_mismatch_(p.handle("tdi_mismatch")),
         rer_(p.handle("rer")), snr_(p.handle("snr")), noise_gain_(p.handle("noise_gain")),
@@ -54,17 +55,9 @@ class Giqe final : public Stage {
   }
 
   void prepare(Context& c) override {
-    altitude_ = c.require(vocabulary::platform_altitude);
-    tilt_ = c.require(vocabulary::platform_tilt);
-    roll_ = c.find(vocabulary::platform_roll);
-    pitch_angle_ = c.find(vocabulary::platform_pitch);
-    radius_ = c.find(vocabulary::platform_earth_radius);
-    focal_ = c.require(vocabulary::optics_focal_length);
+    look_.find(c, params_, "niirs");
     f_number_ = c.require(vocabulary::optics_f_number);
     obscuration_ = c.find(vocabulary::optics_obscuration);
-    pitch_term_ = params_.has("pixel_pitch") ? std::nullopt : c.find(vocabulary::detector_pixel_pitch);
-    if (!params_.has("pixel_pitch") && !pitch_term_)
-      params_.reject("niirs", "no pixel pitch: give pixel_pitch here, or use a detector that publishes detector.pixel_pitch");
     detector_snr_ = params_.has("snr") ? std::nullopt : c.find(vocabulary::detector_snr);
     if (!params_.has("snr") && !detector_snr_)
       params_.reject("snr", "no SNR: give snr here, or use a detector that publishes detector.snr");
@@ -96,12 +89,10 @@ class Giqe final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double h = c.results.value(altitude_), f = c.results.value(focal_);
-    const double p = pitch_term_ ? c.results.value(*pitch_term_) : *pitch_;
-    const double r = radius_ ? c.results.value(*radius_) : physics::earth_mean_radius_m;
-    const double roll = roll_ ? c.results.value(*roll_) : c.results.value(tilt_);
-    const double pitch = pitch_angle_ ? c.results.value(*pitch_angle_) : 0.0;
-    const double ifov = p / f;
+    const Look look = look_.read(c.results);
+    const double h = look.altitude_m, p = look.pixel_pitch_m, r = look.earth_radius_m;
+    const double roll = look.roll_rad, pitch = look.pitch_rad;
+    const double ifov = p / look.focal_length_m;
     const double gsd = std::sqrt(physics::gsd_across_track_m(h, roll, pitch, ifov, r) *
                                  physics::gsd_along_track_m(h, roll, pitch, ifov, r));
     const double n = c.results.value(f_number_), lambda = *wavelength_;
@@ -144,11 +135,12 @@ class Giqe final : public Stage {
 
  private:
   const Params& params_;
-  const double *required_, *pitch_, *wavelength_, *jitter_, *smear_, *diffusion_, *wfe_, *tdi_stages_, *tdi_mismatch_,
+  const double *required_, *wavelength_, *jitter_, *smear_, *diffusion_, *wfe_, *tdi_stages_, *tdi_mismatch_,
       *rer_, *snr_, *noise_gain_;
   bool giqe4_;
-  ResultId altitude_{}, tilt_{}, focal_{}, f_number_{};
-  std::optional<ResultId> roll_, pitch_angle_, radius_, obscuration_, detector_snr_, pitch_term_;
+  LookTerms look_;
+  ResultId f_number_{};
+  std::optional<ResultId> obscuration_, detector_snr_;
   std::optional<ResultId> id_overshoot_;
   ResultId id_gsd_{}, id_gsd_inch_{}, id_rer_{}, id_snr_{}, id_niirs_{}, id_required_{}, id_margin_{},
       id_nyquist_{}, id_mtf_system_{}, id_mtf_diffraction_{}, id_mtf_pixel_{}, id_mtf_other_{}, id_q_{},

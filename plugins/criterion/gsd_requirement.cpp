@@ -6,6 +6,7 @@
 // Also reported: swath of the line (pixel_count or the detector's line length), line time for square samples.
 #include "radchain/physics/earth_geometry.hpp"
 #include "radchain/physics/pushbroom.hpp"
+#include "radchain/look.hpp"
 #include "radchain/plugin.hpp"
 
 #include <algorithm>
@@ -34,20 +35,12 @@ const Schema& schema() {
 class GsdRequirement final : public Stage {
  public:
   explicit GsdRequirement(const Params& p)
-      : params_(p), required_(p.handle("gsd")), pitch_(p.handle("pixel_pitch")), count_(p.handle("pixel_count")), fov_(p.handle("field_of_view")),
+      : params_(p), required_(p.handle("gsd")), count_(p.handle("pixel_count")), fov_(p.handle("field_of_view")),
         direction_(p.text("direction")) {}
 
   void prepare(Context& c) override {
-    altitude_ = c.require(vocabulary::platform_altitude);
+    look_.find(c, params_, "gsd");
     speed_ = c.require(vocabulary::platform_ground_speed);
-    tilt_ = c.require(vocabulary::platform_tilt);
-    roll_ = c.find(vocabulary::platform_roll);
-    pitch_angle_ = c.find(vocabulary::platform_pitch);
-    radius_ = c.find(vocabulary::platform_earth_radius);
-    focal_ = c.require(vocabulary::optics_focal_length);
-    pitch_term_ = params_.has("pixel_pitch") ? std::nullopt : c.find(vocabulary::detector_pixel_pitch);
-    if (!params_.has("pixel_pitch") && !pitch_term_)
-      params_.reject("gsd", "no pixel pitch: give pixel_pitch here, or use a detector that publishes detector.pixel_pitch");
     if (params_.has("pixel_count") && params_.has("field_of_view"))
       params_.reject("field_of_view", "give pixel_count or field_of_view, not both");
     fov_given_ = params_.has("field_of_view");
@@ -72,12 +65,9 @@ class GsdRequirement final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double h = c.results.value(altitude_), f = c.results.value(focal_);
-    const double p = pitch_term_ ? c.results.value(*pitch_term_) : *pitch_;
-    const double r = radius_ ? c.results.value(*radius_) : physics::earth_mean_radius_m;
-    // circular_orbit publishes a tilt only: taken as an across-track roll.
-    const double roll = roll_ ? c.results.value(*roll_) : c.results.value(tilt_);
-    const double pitch = pitch_angle_ ? c.results.value(*pitch_angle_) : 0.0;
+    const Look look = look_.read(c.results);  // circular_orbit publishes a tilt only: taken as an across-track roll
+    const double h = look.altitude_m, f = look.focal_length_m, p = look.pixel_pitch_m, r = look.earth_radius_m;
+    const double roll = look.roll_rad, pitch = look.pitch_rad;
     const double ifov = p / f;
     const double nadir = physics::pixel_pitch_gsd_m(h, p, f);
     const double across = physics::gsd_across_track_m(h, roll, pitch, ifov, r);
@@ -110,12 +100,13 @@ class GsdRequirement final : public Stage {
 
  private:
   const Params& params_;
-  const double *required_, *pitch_, *count_, *fov_;
+  const double *required_, *count_, *fov_;
   bool fov_given_ = false;
   std::string direction_;
   bool has_swath_ = false;
-  ResultId altitude_{}, speed_{}, tilt_{}, focal_{};
-  std::optional<ResultId> roll_, pitch_angle_, radius_, line_, pitch_term_;
+  LookTerms look_;
+  ResultId speed_{};
+  std::optional<ResultId> line_;
   ResultId id_nadir_{}, id_ifov_{}, id_across_{}, id_along_{}, id_mean_{}, id_required_{}, id_margin_{},
       id_line_time_{}, id_field_{}, id_swath_{}, id_swath_flat_{};
 };
