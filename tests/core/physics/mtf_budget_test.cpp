@@ -78,6 +78,10 @@ TEST(Giqe, Giqe5AgainstTheNgaEquationByHand) {
   // halving the GSD raises NIIRS by 3.32 log10 2 = 0.99943
   EXPECT_NEAR(giqe5_niirs(0.25, 0.9, 50) - giqe5_niirs(0.5, 0.9, 50), 3.32 * std::log10(2.0), 1e-12);
   EXPECT_THROW(giqe5_niirs(0.5, 0.9, 0), std::invalid_argument);
+  // The NGA document's own worked point: Figure 1 of "The General Image Quality Equation version 5.0" (NGA, 16 Sep
+  // 2015) puts RER 0.35, GSD 20.8 in (0.52832 m), SNR 50 at NIIRS 5 (the test case pyBSM's giqe5 documents, Kitware
+  // pybsm docs). The equation gives 5.0152; the figure is read to one decimal.
+  EXPECT_NEAR(giqe5_niirs(20.8 * 0.0254, 0.35, 50), 5.0, 0.05);
 }
 
 TEST(Giqe, Giqe4AgainstLeachtenauer1997ByHand) {
