@@ -264,6 +264,21 @@ TEST(RenderFits, TruncatedOrMalformedFilesAreRefusedWithTheReason) {
   EXPECT_NE(refusal(header({simple, card("BITPIX", "8"), card("NAXIS", "2"), card("NAXIS1", "4")}))
                 .find("the mandatory NAXIS2 card is missing"),
             std::string::npos);
+  // Other cards: an integer beyond 64 bits is kept as a real; a value that is no FITS value is refused with the card
+  // named (std::stoll's out_of_range escaped as an internal error: scene_fits_fuzz, session 5).
+  const std::vector<std::string> mandatory = {simple, card("BITPIX", "8"), card("NAXIS", "2"), card("NAXIS1", "4"), card("NAXIS2", "4")};
+  auto with = [&](const std::string& extra) {
+    std::vector<std::string> cards = mandatory;
+    cards.push_back(extra);
+    return header(cards);
+  };
+  const std::string path = temp_path("bigcard.fits");
+  write_bytes(path, with(card("BIGINT", "99999999999999999999")));
+  const ImageFile big = read_image(path);
+  ASSERT_EQ(big.header.size(), 1u);
+  EXPECT_EQ(std::get<double>(big.header[0].value), 1e20);
+  EXPECT_NE(refusal(with(card("BAD", "12abc"))).find("card BAD: value \"12abc\" is not a FITS value"), std::string::npos);
+  EXPECT_NE(refusal(with(card("HUGE", "1E999"))).find("card HUGE: value \"1E999\" is not a FITS value"), std::string::npos);
 }
 
 }  // namespace

@@ -14,6 +14,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -249,10 +251,16 @@ void write_float_image(const std::string& path, const Image& image, const Header
 
 namespace {
 
-// A FITS card's value as typed: 'text' (quotes undone), T/F, an integer, else a real.
-HeaderCard typed_card(const RawCard& raw) {
+// A FITS card's value as typed: 'text' (quotes undone), T/F, an integer, else a real (FITS Standard 4.0 §4.2). An
+// integer beyond 64 bits is kept as a real; anything else that is none of these is refused with the card named
+// (a std::stoll here once let std::out_of_range escape as an internal error: scene_fits_fuzz).
+HeaderCard typed_card(const RawCard& raw, const std::string& path) {
   HeaderCard card{raw.key, std::string(), raw.comment};
   const std::string& v = raw.value;
+  auto refuse = [&] {
+    throw std::runtime_error("cannot read \"" + path + "\": card " + raw.key + ": value \"" + v +
+                             "\" is not a FITS value (a 'text', T or F, an integer or a real)");
+  };
   if (v.size() >= 2 && v.front() == '\'') {
     std::string text;
     for (std::size_t i = 1; i + 1 < v.size(); ++i) {
@@ -263,12 +271,24 @@ HeaderCard typed_card(const RawCard& raw) {
     card.value = text;
   } else if (v == "T" || v == "F") {
     card.value = v == "T";
-  } else if (!v.empty() && v.find_first_of(".EeDd") == std::string::npos) {
-    card.value = static_cast<std::int64_t>(std::stoll(v));
   } else if (!v.empty()) {
+    if (v.find_first_of(".EeDd") == std::string::npos) {
+      std::int64_t integer = 0;
+      const char* first = v.data() + (v.front() == '+' ? 1 : 0);
+      const auto [end, error] = std::from_chars(first, v.data() + v.size(), integer);
+      if (error == std::errc() && end == v.data() + v.size()) {
+        card.value = integer;
+        return card;
+      }
+      if (error != std::errc::result_out_of_range) refuse();
+    }
     std::string number = v;
     std::replace(number.begin(), number.end(), 'D', 'E');  // FITS allows D exponents
-    card.value = std::stod(number);
+    errno = 0;
+    char* end = nullptr;
+    const double real = std::strtod(number.c_str(), &end);
+    if (end != number.c_str() + number.size() || errno == ERANGE || !std::isfinite(real)) refuse();
+    card.value = real;
   }
   return card;
 }
@@ -379,7 +399,7 @@ ImageFile read_fits(const std::string& path) {
       file.image(x, y) = static_cast<float>(values[static_cast<std::size_t>(h - 1 - y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)]);
   static const std::set<std::string> structural = {"SIMPLE", "BITPIX", "NAXIS", "NAXIS1", "NAXIS2", "EXTEND", "COMMENT", "HISTORY"};
   for (const RawCard& raw : read_fits_header_cards(path))
-    if (!structural.count(raw.key)) file.header.push_back(typed_card(raw));
+    if (!structural.count(raw.key)) file.header.push_back(typed_card(raw, path));
   return file;
 }
 
