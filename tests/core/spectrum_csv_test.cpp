@@ -70,6 +70,12 @@ const Shipped shipped[] = {
     {"lsst_atmos_aerosol_X15_throughputs1.9.csv", "1"},
     {"lsst_atmos_aerosol_X20_throughputs1.9.csv", "1"},
     {"lsst_atmos_aerosol_X25_throughputs1.9.csv", "1"},
+    {"swift_uvot_v_throughput.csv", "1"},
+    {"swift_uvot_b_throughput.csv", "1"},
+    {"swift_uvot_u_throughput.csv", "1"},
+    {"swift_uvot_uvw1_throughput.csv", "1"},
+    {"galex_fuv_throughput.csv", "1"},
+    {"galex_nuv_throughput.csv", "1"},
 };
 
 TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
