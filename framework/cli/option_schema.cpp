@@ -47,10 +47,12 @@ const Schema& render_option_schema() {
              number("--offset", "100").fallback("0").at_least(0).described("ADC pedestal (DN)"),
              quantity("--scene-sampling", "m", "1.25 m").above(0).described("ground size of one pixel of the scene map"),
              quantity("--gsd", "m", "5 m").above(0).described("output ground sampling (default: the design's ground element)"),
-             choice("--optics-mtf", {"diffraction", "eq7", "none"}).fallback("diffraction").described("objective MTF of an Earth scene"),
+             choice("--optics-mtf", {"auto", "budget", "diffraction", "eq7", "none"}).fallback("auto")
+                 .described("optics MTF of an Earth scene (auto: the chain's MTF budget if it has one, else diffraction)"),
              quantity("--wavelength", "m", "0.76 um").above(0).described("MTF wavelength (default: the mtf_match criterion's)"),
              flag("--no-detector-mtf").fallback("false").described("leave out the element MTF (Kolobrodov eq. 8)"),
-             integer("--adc-bits", "12").fallback("12").at_least(1).at_most(32).described("ADC of an Earth scene (ccd_line has none)"),
+             integer("--adc-bits", "12").at_least(1).at_most(32)
+                 .described("ADC of an Earth scene (default: the detector's detector.adc_bits, else 12; ccd_line has none)"),
              choice("--stretch", {"asinh", "linear"}).described("preview stretch (default: asinh for frames, linear for scenes)"),
              integer("--upscale", "4").fallback("1").at_least(1).at_most(16).described("preview upscale (nearest neighbour)"),
          })

@@ -443,8 +443,16 @@ class Emva1288 final : public Stage {
     if (reflectance_)
       id_nedrho_ = c.declare(vocabulary::detector_noise_equivalent_reflectance,
                              "noise(L_ref) / (dS/dρ) = noise(L_ref) ρ / S_surface (at the target's sun angle)");
-    id_path_electrons_ = c.declare("path_radiance_electrons", "electron",
+    id_path_electrons_ = c.declare(vocabulary::detector_path_radiance_electrons,
                                    "M b² k L̄_path: the atmosphere's path radiance in the scene's pixel (0 without one)", "e-");
+    // What `render` draws the scene with (framework/imaging/earth_scene.hpp): the ADC, dark, read and fixed-pattern noise.
+    id_bits_ = c.declare(vocabulary::detector_adc_bits, "input");
+    id_dark_rate_ = c.declare(vocabulary::detector_dark_rate, "b² μ_I per (binned) pixel", "e-/s");
+    id_read_pixel_ = c.declare(vocabulary::detector_read_noise_per_pixel, "b √(σ_d0² + σ_other²) per (binned) pixel", "e-");
+    id_binning_ = c.declare(vocabulary::detector_binning, "input b");
+    id_exposures_ = c.declare(vocabulary::detector_exposures, "input M");
+    id_prnu_ = c.declare(vocabulary::detector_prnu, "input s_g", "%");
+    id_dsnu_ = c.declare(vocabulary::detector_dsnu, "input σ_o", "e-");
     id_saturation_radiance_ = c.declare(vocabulary::detector_saturation_radiance,
                                         "(min(μ_e.sat, (2^bits−1)/K) − N_tdi μ_I t) / k", "W m-2 sr-1 um-1");
     id_solid_angle_ = c.declare("pixel_solid_angle", "sr", "Ω = π (1 − ε²) / (4 N²): A_pixel Ω = A_pupil IFOV²");
@@ -511,6 +519,13 @@ class Emva1288 final : public Stage {
     if (id_nedrho_) a.set(*id_nedrho_, reference_noise * a.value(*reflectance_) / (m * b * b * surface_native));
     a.set(id_path_electrons_, m * b * b * path_native);
     a.set(id_saturation_radiance_, saturation_radiance);
+    a.set(id_bits_, *bits_);
+    a.set(id_dark_rate_, b * b * *dark_current_);
+    a.set(id_read_pixel_, b * std::hypot(*dark_noise_, *other_));
+    a.set(id_binning_, b);
+    a.set(id_exposures_, m);
+    a.set(id_prnu_, *prnu_);
+    a.set(id_dsnu_, *dsnu_);
     if (!a.full_detail()) return;
     a.set(id_gain_, gain);
     a.set(id_tdi_, tdi);
@@ -539,7 +554,7 @@ class Emva1288 final : public Stage {
   bool extended_ = false, reference_given_ = false, reference_from_reflectance_ = false;
   const double *reference_radiance_, *reference_reflectance_;
   double photon_rate_per_scale_ = 0, ab_electrons_per_m2_s_ = 0, flat_photon_integral_ = 0, path_photon_rate_ = 0;
-  ResultId id_path_electrons_{};
+  ResultId id_path_electrons_{}, id_binning_{}, id_exposures_{}, id_prnu_{}, id_dsnu_{};
   std::optional<ResultId> reflectance_, id_nedrho_;
   ResultId id_pitch_{}, id_scene_radiance_{}, id_reference_radiance_{}, id_reference_signal_{}, id_reference_snr_{},
       id_nedl_{}, id_saturation_radiance_{}, id_solid_angle_{}, id_etendue_{}, id_responsivity_{}, id_qe_integral_{},
@@ -575,7 +590,9 @@ RADCHAIN_PLUGIN(Emva1288, {
                   vocabulary::detector_noise_equivalent_reflectance, vocabulary::detector_saturation_radiance,
                   vocabulary::detector_target_streak_pixels, vocabulary::detector_star_streak_pixels,
                   vocabulary::detector_trailing_loss, vocabulary::detector_psf_fwhm, vocabulary::detector_adc_bits,
-                  vocabulary::detector_dark_rate, vocabulary::detector_read_noise_per_pixel},
+                  vocabulary::detector_dark_rate, vocabulary::detector_read_noise_per_pixel,
+                  vocabulary::detector_path_radiance_electrons, vocabulary::detector_binning,
+                  vocabulary::detector_exposures, vocabulary::detector_prnu, vocabulary::detector_dsnu},
     .needs = {if_present(vocabulary::optics_psf_wavelength), if_present(vocabulary::optics_gaussian_fwhm),
               if_present(vocabulary::optics_f_number), if_present(vocabulary::optics_obscuration),
               if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_aperture),

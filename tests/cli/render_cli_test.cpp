@@ -30,6 +30,27 @@ TEST(RenderCli, EarthSceneAsFloatTiffAndBadExtension) {
   EXPECT_EQ(run_cli(scratch, "render '" + kolobrodov_file + "' --out " + (scratch / "x.jpg").string()).exit_code, 2);
 }
 
+// A real imager with a datasheet detector and an MTF budget (issue 14, item 8): the scene in electrons through the
+// budget, the detector's ADC; validate measures the budget on an edge and the chain's SNR on a flat field.
+TEST(RenderCli, DatasheetImagerRendersAndValidates) {
+  Scratch scratch;
+  const std::string s2 = source_dir + "/sensors/sentinel-2a-msi-b4.toml", fits = (scratch / "s2.fits").string();
+  const CliResult r = run_cli(scratch, "render '" + s2 + "' --out " + fits);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("optics MTF budget"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("e- per unit reflectance"), std::string::npos) << r.out;
+  EXPECT_GT(fs::file_size(fits), 2880u);
+  const CliResult v = run_cli(scratch, "validate '" + s2 + "' --size 128");
+  EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
+  EXPECT_NE(v.out.find("ok   flat field at the scene's reflectance"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("ok   edge MTF"), std::string::npos) << v.out;
+  // A binned detector is refused with its reason, not drawn as if native.
+  const CliResult b = run_cli(scratch, "render '" + s2 + "' --set detector.binning=2 --out " + (scratch / "b.fits").string());
+  EXPECT_EQ(b.exit_code, 2);
+  EXPECT_NE(b.err.find("binning 2 is not simulated"), std::string::npos) << b.err;
+  EXPECT_FALSE(fs::exists(scratch / "b.fits"));
+}
+
 // Each bad option value: exit 2, nothing on stdout, exactly this one line on stderr.
 struct BadOption {
   std::string arguments, message;
@@ -69,7 +90,7 @@ TEST(RenderCli, OptionValuesAreValidatedByTheirSchema) {
       {"render '" + sbv_file + "' --obscuration 1", "radchain render: --obscuration = 1: out of range: accepted in [0, 1)"},
       {"render '" + sbv_file + "' --upscale 17", "radchain render: --upscale = 17: out of range: accepted in [1, 16]"},
       {"render '" + kolobrodov_file + "' --optics-mtf eq8",
-       "radchain render: --optics-mtf = \"eq8\": expected one of diffraction, eq7, none (did you mean \"eq7\"?)"},
+       "radchain render: --optics-mtf = \"eq8\": expected one of auto, budget, diffraction, eq7, none (did you mean \"eq7\"?)"},
       {"validate '" + sbv_file + "' --trials 10", "radchain validate: --trials = 10: out of range: accepted in [100, 1e+08]"},
       {"validate '" + sbv_file + "' --max-z -1", "radchain validate: --max-z = -1: out of range: accepted > 0"},
   };

@@ -140,3 +140,88 @@ TEST(RenderEarth, RefusesSensorsItCannotRender) {
 }
 
 }  // namespace
+
+// ---- A datasheet detector (emva1288 on a reflectance target) and the chain's MTF budget (issue 14, item 8) ----
+
+namespace datasheet {
+const char* s2 = "sentinel-2a-msi-b4.toml";
+
+TEST(RenderEarthDatasheet, ElectronsPerReflectanceComeFromTheChain) {
+  auto k = load(s2);
+  EarthSceneOptions o = options(9.825);
+  const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, o);
+  ASSERT_EQ(s.radiometry, EarthRadiometry::electrons);
+  // The chain's own scene: ρ = 0.3 gives detector.signal_electrons (no atmosphere: no path radiance).
+  EXPECT_NEAR(s.scene_reflectance, 0.3, 1e-15);
+  EXPECT_NEAR(s.photo_electrons(0.3), *k.report.value("detector.signal_electrons"), 1e-9 * s.photo_electrons(0.3));
+  EXPECT_EQ(s.path_electrons, 0.0);
+  EXPECT_NEAR(s.gain_dn_per_e, 0.06825, 1e-12);
+  EXPECT_NEAR(s.capacity_e, std::min(60000.0, 4095 / 0.06825), 1e-6);
+  EXPECT_EQ(s.adc_bits, 12);  // the detector's, not the option's old default
+  EXPECT_NEAR(s.read_noise_e, 40.0, 1e-12);
+  // Independent of the render code: k_ρ = S(ρ)/ρ is the same at another reflectance of the same scene.
+  auto half = load(s2, {{"target.reflectance", "0.15"}});
+  EXPECT_NEAR(s.photo_electrons(0.15), *half.report.value("detector.signal_electrons"), 1e-9 * s.photo_electrons(0.15));
+  // A flat map without noise or ADC is the photo signal itself, pixel for pixel.
+  o.noise = o.saturation = o.quantisation = false;
+  const EarthSceneSetup clean = earth_scene_setup(k.chain, k.report, o);
+  const Image flat = render_earth_scene(clean, make_flat_scene(16, 16, 0.3), 1);
+  for (float v : flat.pixels) EXPECT_NEAR(v, s.photo_electrons(0.3), 1e-4 * s.photo_electrons(0.3));
+  EXPECT_EQ(earth_unit(clean), "electron");
+}
+
+TEST(RenderEarthDatasheet, FlatFieldHasTheChainsSnr) {
+  auto k = load(s2);
+  const FlatFieldCheck flat = check_earth_flat_field(k.chain, k.report, EarthSceneOptions{}, 256, 7);
+  // The renderer's noise law is the chain's (EMVA 1288 eq. 6 with the ADC's 1/(12 K²)): the same number.
+  EXPECT_NEAR(flat.predicted_snr, *k.report.value("detector.snr"), 1e-9 * flat.predicted_snr);
+  // And the rendered frame measures it (65 536 pixels: σ(SNR) ≈ 0.27 at SNR ≈ 100).
+  EXPECT_TRUE(flat.passed(4.0)) << flat.measured_snr << " ± " << flat.snr_sigma << " vs " << flat.predicted_snr;
+  // With PRNU and DSNU the fixed pattern adds to the noise as EMVA 1288 eq. 18 says, and the chain agrees.
+  auto fpn = load(s2, {{"detector.prnu", "0.01"}, {"detector.dsnu", "20 e-"}});
+  const FlatFieldCheck with = check_earth_flat_field(fpn.chain, fpn.report, EarthSceneOptions{}, 256, 7);
+  EXPECT_NEAR(with.predicted_snr, *fpn.report.value("detector.snr"), 1e-9 * with.predicted_snr);
+  EXPECT_LT(with.predicted_snr, 0.9 * flat.predicted_snr);
+  EXPECT_TRUE(with.passed(4.0)) << with.measured_snr << " ± " << with.snr_sigma << " vs " << with.predicted_snr;
+}
+
+TEST(RenderEarthDatasheet, TheMtfBudgetIsTheGiqeCriterionsCascade) {
+  // Jitter, smear, diffusion, wavefront error and TDI, so every term of the budget is in play.
+  auto k = load(s2, {{"criteria.iq.jitter_rms", "0.8 um"}, {"criteria.iq.smear_pixels", "0.4"}, {"criteria.iq.diffusion_rms", "1 um"},
+                     {"criteria.iq.wavefront_error", "0.05"}, {"criteria.iq.tdi_stages", "8"}, {"criteria.iq.tdi_mismatch", "0.05"}});
+  const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, options(2.0));
+  ASSERT_EQ(s.optics, OpticsMtf::budget);
+  const double nyquist_ground = 0.5 / s.budget.pitch_m * s.ground_to_focal();
+  // Along track (y) every component acts: the giqe criterion's system MTF at Nyquist.
+  EXPECT_NEAR(system_mtf(s, 0, nyquist_ground), *k.report.value("criteria.iq.mtf_nyquist_system"), 1e-9);
+  // Across track the smear and TDI terms do not.
+  const physics::MtfComponents m = physics::mtf_components(s.budget, 0.5 / s.budget.pitch_m);
+  EXPECT_NEAR(system_mtf(s, nyquist_ground, 0), m.system() / (m.smear * m.tdi), 1e-9);
+  EXPECT_LT(system_mtf(s, 0, nyquist_ground), system_mtf(s, nyquist_ground, 0));
+  // "diffraction" leaves the budget's other terms out.
+  EarthSceneOptions o = options(2.0);
+  o.optics = OpticsMtf::diffraction;
+  const EarthSceneSetup d = earth_scene_setup(k.chain, k.report, o);
+  EXPECT_NEAR(system_mtf(d, 0, nyquist_ground), m.diffraction * m.pixel, 1e-9);
+}
+
+TEST(RenderEarthDatasheet, ARenderedEdgeMeasuresTheBudget) {
+  auto k = load(s2, {{"criteria.iq.jitter_rms", "1.5 um"}, {"criteria.iq.smear_pixels", "0.5"}});
+  const EdgeCheck edge = check_edge_mtf(k.chain, k.report, EarthSceneOptions{});
+  EXPECT_TRUE(edge.passed()) << "max relative error " << edge.max_relative_error;
+  EXPECT_NEAR(edge.mtf_at_nyquist_measured, edge.mtf_at_nyquist_model, 0.02);
+}
+
+TEST(RenderEarthDatasheet, BinnedOrCoaddedFramesAreRefusedNotApproximated) {
+  for (const auto& [key, value, term] : {std::tuple{"detector.binning", "2", "detector.binning"},
+                                         std::tuple{"detector.exposures", "4", "detector.exposures"}}) {
+    auto k = load(s2, {{key, value}});
+    try {
+      earth_scene_setup(k.chain, k.report, options(2.0));
+      ADD_FAILURE() << key << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(term), std::string::npos) << e.what();
+    }
+  }
+}
+}  // namespace datasheet

@@ -98,11 +98,14 @@ RenderedImage render_earth(Chain& chain, const Report& report, const RenderReque
   EarthSceneOptions o;
   o.output_sampling_m = v.maybe("--gsd");
   o.wavelength_m = v.maybe("--wavelength");
-  o.optics = *optics_mtf_from_string(v.text("--optics-mtf"));  // one of the schema's choices
+  if (v.text("--optics-mtf") != "auto") o.optics = *optics_mtf_from_string(v.text("--optics-mtf"));  // a schema choice
   o.detector_mtf = !v.flag("--no-detector-mtf");
-  o.adc_bits = static_cast<int>(v.integer("--adc-bits"));
+  if (v.has("--adc-bits")) o.adc_bits = static_cast<int>(v.integer("--adc-bits"));
   const NoiseTerms n = noise_of(v);
   o.noise = n.read || n.shot || n.dark;
+  o.shot = n.shot;
+  o.dark = n.dark;
+  o.read = n.read;
   o.saturation = n.saturation;
   o.quantisation = n.quantisation;
   Image map;
@@ -136,8 +139,14 @@ RenderedImage render_earth(Chain& chain, const Report& report, const RenderReque
   out.summary.push_back(fmt::format("{}: Earth scene {}×{} at {:.4g} m → {}×{} at {:.4g} m (optics MTF {}, λ = {:.4g} um, N = {:.4g})",
                                     s.sensor_name, map.width, map.height, s.input_sampling_m, image.width, image.height,
                                     s.output_sampling_m, to_string(s.optics), s.wavelength_m * 1e6, s.f_number));
-  out.summary.push_back(fmt::format("  exposure per unit reflectance {:.4g} J m-2, NEE {:.4g} J m-2, SNR of Δρ = {:.4g}: {:.4g}; {}",
-                                    s.exposure_per_reflectance(), s.nee_J_m2, s.reflectance_difference, s.snr, earth_unit(s)));
+  if (s.radiometry == EarthRadiometry::electrons)
+    out.summary.push_back(fmt::format("  {:.5g} e- per unit reflectance + {:.4g} e- path radiance, dark {:.4g} e-, read {:.4g} e-, "
+                                      "well {:.5g} e-, K {:.4g} DN/e-, SNR at ρ = {:.4g}: {:.4g}; {}",
+                                      s.electrons_per_reflectance, s.path_electrons, s.dark_electrons, s.read_noise_e,
+                                      s.capacity_e, s.gain_dn_per_e, s.scene_reflectance, s.snr, earth_unit(s)));
+  else
+    out.summary.push_back(fmt::format("  exposure per unit reflectance {:.4g} J m-2, NEE {:.4g} J m-2, SNR of Δρ = {:.4g}: {:.4g}; {}",
+                                      s.exposure_per_reflectance(), s.nee_J_m2, s.reflectance_difference, s.snr, earth_unit(s)));
   return out;
 }
 

@@ -215,20 +215,42 @@ FlatFieldCheck check_earth_flat_field(Chain& chain, const Report& report, EarthS
   const double gsd = earth_scene_setup(chain, report, scene).output_sampling_m;
   scene.output_sampling_m = scene.input_sampling_m = gsd;  // one input pixel per output pixel: no resampling
   const EarthSceneSetup s = earth_scene_setup(chain, report, scene);
+  FlatFieldCheck check;
+  const double q = s.exposure_per_dn();
+  if (s.radiometry == EarthRadiometry::electrons) {
+    // One flat field at the chain's own reflectance: its SNR is the chain's detector.snr (EMVA 1288 eq. 6, the
+    // dark level subtracted as EMVA's μ_e is).
+    const Image a = render_earth_scene(s, make_flat_scene(size, size, s.scene_reflectance), seed);
+    auto electrons = [&](float v) { return s.quantisation ? (v - s.offset_dn) * q : static_cast<double>(v); };
+    Moments m;
+    for (float v : a.pixels) m.add(electrons(v));
+    const double photo = s.photo_electrons(s.scene_reflectance);
+    const double dark = s.dark ? s.dark_electrons : 0.0;
+    check.what = "earth: flat field at the scene's reflectance";
+    check.samples = m.n;
+    check.measured_noise = std::sqrt(m.variance());
+    check.measured_snr = (m.mean() - dark) / check.measured_noise;
+    check.chain_snr = s.snr;
+    check.predicted_noise = std::sqrt((s.shot ? photo : 0.0) + dark + (s.read ? s.read_noise_e * s.read_noise_e : 0.0) +
+                                      (s.dark ? s.dsnu_e * s.dsnu_e : 0.0) + (s.shot ? s.prnu * s.prnu * photo * photo : 0.0) +
+                                      (s.quantisation ? q * q / 12.0 : 0.0));
+    check.predicted_snr = photo / check.predicted_noise;
+    // Error of mean/σ from n samples of a Gaussian: var ≈ (1 + SNR²/2) / n.
+    check.snr_sigma = std::sqrt((1.0 + 0.5 * check.predicted_snr * check.predicted_snr) / static_cast<double>(check.samples));
+    return check;
+  }
   const double rho = s.background_reflectance > 0 ? s.background_reflectance : 0.3;
   const Image a = render_earth_scene(s, make_flat_scene(size, size, rho), seed);
   const Image b = render_earth_scene(s, make_flat_scene(size, size, rho + s.reflectance_difference), seed + 1);
-  auto exposure = [&](float v) { return s.quantisation ? (v - s.offset_dn) * s.exposure_per_dn() : static_cast<double>(v); };
+  auto exposure = [&](float v) { return s.quantisation ? (v - s.offset_dn) * q : static_cast<double>(v); };
   Moments ma, mb;
   for (float v : a.pixels) ma.add(exposure(v));
   for (float v : b.pixels) mb.add(exposure(v));
-  FlatFieldCheck check;
   check.what = "earth: flat fields at rho0 and rho0 + drho";
   check.samples = ma.n;
   check.measured_noise = std::sqrt(0.5 * (ma.variance() + mb.variance()));
   check.measured_snr = (mb.mean() - ma.mean()) / check.measured_noise;
   check.chain_snr = s.snr;
-  const double q = s.exposure_per_dn();
   check.predicted_noise = std::sqrt((s.noise ? s.nee_J_m2 * s.nee_J_m2 : 0.0) + (s.quantisation ? q * q / 12.0 : 0.0));
   check.predicted_snr = s.exposure_per_reflectance() * s.reflectance_difference / check.predicted_noise;
   const double nn = static_cast<double>(check.samples);

@@ -3,11 +3,15 @@
 
 #include "chain_access.hpp"
 #include "fftw.hpp"
+#include "radchain/imaging/mtf_curves.hpp"
 #include "radchain/physics/mtf.hpp"
 #include "random.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace radchain::render {
@@ -37,13 +41,33 @@ double optics_otf(const EarthSceneSetup& s, double nu_focal) {
   switch (s.optics) {
     case OpticsMtf::diffraction: return physics::diffraction_mtf(nu_focal, s.wavelength_m, s.f_number, s.obscuration);
     case OpticsMtf::kolobrodov_eq7: return physics::kolobrodov_linear_mtf(nu_focal, s.wavelength_m, s.f_number, s.eta);
+    case OpticsMtf::budget: {
+      // The budget's radially symmetric terms (physics/mtf_budget.hpp); smear and TDI act along track only.
+      const physics::MtfBudget& b = s.budget;
+      return physics::diffraction_mtf(nu_focal, b.wavelength_m, b.f_number, b.obscuration) *
+             physics::wavefront_error_mtf(nu_focal, b.wavelength_m, b.f_number, b.wavefront_error_waves) *
+             physics::jitter_mtf(nu_focal, b.jitter_rms_m) * physics::diffusion_mtf(nu_focal, b.diffusion_rms_m);
+    }
     case OpticsMtf::none: break;
   }
   return 1.0;
 }
 
-double detector_otf(const EarthSceneSetup& s, double nu_focal) {
+// Across track (x): the element aperture. Along track (y): also the budget's linear smear and TDI
+// synchronisation, signed (the OTF of a box and of N shifted copies; physics/mtf.hpp gives their moduli).
+double detector_otf_x(const EarthSceneSetup& s, double nu_focal) {
   return s.detector_mtf ? physics::sinc_pi(s.element_m * nu_focal) : 1.0;
+}
+
+double detector_otf_y(const EarthSceneSetup& s, double nu_focal) {
+  double otf = detector_otf_x(s, nu_focal);
+  if (s.optics == OpticsMtf::budget) {
+    const physics::MtfBudget& b = s.budget;
+    otf *= physics::sinc_pi(b.smear_m * nu_focal);
+    const double a = std::numbers::pi * b.tdi_mismatch * b.pitch_m * nu_focal;
+    if (std::abs(std::sin(a)) >= 1e-12) otf *= std::sin(b.tdi_stages * a) / (b.tdi_stages * std::sin(a));
+  }
+  return otf;
 }
 
 double sampling_ratio(const EarthSceneSetup& s) { return s.output_sampling_m / s.input_sampling_m; }
@@ -54,6 +78,7 @@ std::string to_string(OpticsMtf model) {
   switch (model) {
     case OpticsMtf::diffraction: return "diffraction";
     case OpticsMtf::kolobrodov_eq7: return "eq7";
+    case OpticsMtf::budget: return "budget";
     case OpticsMtf::none: return "none";
   }
   return "?";
@@ -62,23 +87,33 @@ std::string to_string(OpticsMtf model) {
 std::optional<OpticsMtf> optics_mtf_from_string(const std::string& name) {
   if (name == "diffraction") return OpticsMtf::diffraction;
   if (name == "eq7" || name == "kolobrodov_eq7") return OpticsMtf::kolobrodov_eq7;
+  if (name == "budget") return OpticsMtf::budget;
   if (name == "none") return OpticsMtf::none;
   return std::nullopt;
 }
 
-double EarthSceneSetup::exposure_per_dn() const { return saturation_J_m2 / std::exp2(adc_bits); }
+double EarthSceneSetup::exposure_per_dn() const {
+  return radiometry == EarthRadiometry::electrons ? 1.0 / gain_dn_per_e : saturation_J_m2 / std::exp2(adc_bits);
+}
 
 EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const EarthSceneOptions& o) {
   const std::string& file = chain.sensor_file;
+  EarthSceneSetup s;
+  // A datasheet detector counts electrons of a reflectance; a ccd_line design has a noise-equivalent exposure.
+  s.radiometry = !result(report, vocabulary::detector_nee_working) && result(report, vocabulary::detector_system_gain) &&
+                         result(report, vocabulary::target_reflectance)
+                     ? EarthRadiometry::electrons
+                     : EarthRadiometry::exposure;
+  const bool electrons = s.radiometry == EarthRadiometry::electrons;
   auto need = [&](const Term& term) {
     const auto v = result(report, term);
     if (!v)
       refuse(file, std::string(term.name),
-             "an Earth scene needs a pushbroom chain (platform, telescope with a focal length, ccd_line detector, "
-             "ground_resolution criterion) publishing this result; this sensor does not");
+             "an Earth scene needs a pushbroom chain (platform, telescope with a focal length, a ccd_line detector, or "
+             "an emva1288 detector on a reflectance_ground target, a ground_resolution or gsd_requirement criterion) "
+             "publishing this result; this sensor does not");
     return *v;
   };
-  EarthSceneSetup s;
   s.sensor_name = chain.sensor_name;
   s.sensor_file = chain.sensor_file;
   s.altitude_m = need(vocabulary::platform_altitude);
@@ -86,19 +121,50 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   s.f_number = need(vocabulary::optics_f_number);
   s.aperture_m = need(vocabulary::optics_aperture);
   s.obscuration = result(report, vocabulary::optics_obscuration).value_or(0.0);
-  s.element_m = need(vocabulary::detector_element_size_for_mtf);
+  s.element_m = electrons ? result(report, vocabulary::detector_element_size_for_mtf).value_or(need(vocabulary::detector_pixel_pitch))
+                          : need(vocabulary::detector_element_size_for_mtf);
   s.pitch_m = result(report, vocabulary::detector_pixel_pitch).value_or(s.element_m);
-  s.reflectance_difference = need(vocabulary::target_reflectance_difference);
-  s.irradiance_per_reflectance_W_m2 = need(vocabulary::detector_signal_irradiance) / s.reflectance_difference;
   s.integration_time_s = need(vocabulary::detector_integration_time);
-  s.nee_J_m2 = need(vocabulary::detector_nee_working);
   s.snr = need(vocabulary::detector_snr);
+  if (electrons) {
+    // One native pixel, one frame: binned or co-added images are other images (a refusal, not an approximation).
+    if (const double b = result(report, vocabulary::detector_binning).value_or(1.0); b != 1.0)
+      refuse(file, std::string(vocabulary::detector_binning.name),
+             fmt::format("an Earth scene is drawn one native pixel per sample; binning {:g} is not simulated", b));
+    if (const double m = result(report, vocabulary::detector_exposures).value_or(1.0); m != 1.0)
+      refuse(file, std::string(vocabulary::detector_exposures.name),
+             fmt::format("an Earth scene is drawn as one frame; {:g} co-added exposures are not simulated", m));
+    s.scene_reflectance = need(vocabulary::target_reflectance);
+    if (!(s.scene_reflectance > 0))
+      refuse(file, std::string(vocabulary::target_reflectance.name), "the scene's reflectance must be > 0 to give electrons per reflectance");
+    s.path_electrons = result(report, vocabulary::detector_path_radiance_electrons).value_or(0.0);
+    s.electrons_per_reflectance = (need(vocabulary::detector_signal_electrons) - s.path_electrons) / s.scene_reflectance;
+    s.dark_electrons = need(vocabulary::detector_dark_rate) * s.integration_time_s *
+                       result(report, vocabulary::detector_tdi_stages).value_or(1.0);
+    s.read_noise_e = need(vocabulary::detector_read_noise_per_pixel);
+    s.prnu = result(report, vocabulary::detector_prnu).value_or(0.0);
+    s.dsnu_e = result(report, vocabulary::detector_dsnu).value_or(0.0);
+    s.gain_dn_per_e = need(vocabulary::detector_system_gain);
+    s.capacity_e = need(vocabulary::detector_saturation_capacity);
+    s.background_reflectance = s.scene_reflectance;
+  } else {
+    s.reflectance_difference = need(vocabulary::target_reflectance_difference);
+    s.irradiance_per_reflectance_W_m2 = need(vocabulary::detector_signal_irradiance) / s.reflectance_difference;
+    s.nee_J_m2 = need(vocabulary::detector_nee_working);
+  }
   if (auto g = detail::criterion_result(report, vocabulary::criterion_ground_element)) s.ground_element_m = g->second;
   if (auto g = detail::criterion_result(report, vocabulary::criterion_gsd_nadir)) s.pixel_gsd_m = g->second;
 
+  s.optics = o.optics.value_or(has_mtf_budget(report) ? OpticsMtf::budget : OpticsMtf::diffraction);
+  if (s.optics == OpticsMtf::budget) {
+    if (!has_mtf_budget(report)) refuse(file, "optics MTF", "\"budget\" needs a chain with an MTF budget (a giqe criterion)");
+    s.budget = mtf_budget(report);
+    if (o.wavelength_m) s.budget.wavelength_m = *o.wavelength_m;
+  }
   const auto quality = detail::criterion_result(report, vocabulary::criterion_required_quality);
   if (quality) s.eta = quality->second;
   if (o.wavelength_m) s.wavelength_m = *o.wavelength_m;
+  else if (has_mtf_budget(report)) s.wavelength_m = mtf_budget(report).wavelength_m;
   else if (quality && result(report, vocabulary::criterion_wavelength, quality->first))
     s.wavelength_m = *result(report, vocabulary::criterion_wavelength, quality->first);
   else {
@@ -106,14 +172,18 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
     if (!lo || !hi) refuse(file, "wavelength", "give the MTF wavelength as an option (the sensor has no mtf_match criterion or band)");
     s.wavelength_m = 0.5 * (*lo + *hi);
   }
-  s.optics = o.optics;
+  if (s.optics == OpticsMtf::kolobrodov_eq7 && !quality)
+    refuse(file, "optics MTF", "\"eq7\" needs the design quality η of an mtf_match criterion");
   s.detector_mtf = o.detector_mtf;
   if (!(s.wavelength_m > 0)) refuse(file, "wavelength", "must be > 0");
 
-  if (o.saturation_exposure_J_m2) s.saturation_J_m2 = *o.saturation_exposure_J_m2;
+  if (electrons) {
+    if (o.saturation_exposure_J_m2) refuse(file, "saturation exposure", "a datasheet detector saturates at its detector.saturation_capacity");
+  } else if (o.saturation_exposure_J_m2) s.saturation_J_m2 = *o.saturation_exposure_J_m2;
   else if (auto h = result(report, vocabulary::detector_saturation_exposure))
     s.saturation_J_m2 = *h * result(report, vocabulary::detector_utilisation_ratio).value_or(1.0);  // H_m k_i/k_c, as H_nr
-  if (auto rho = result(report, vocabulary::target_background_reflectance)) s.background_reflectance = *rho;
+  if (electrons) {
+  } else if (auto rho = result(report, vocabulary::target_background_reflectance)) s.background_reflectance = *rho;
   else if (auto m = result(report, vocabulary::target_background_exitance), e = result(report, vocabulary::atmosphere_ground_irradiance); m && e && *e > 0)
     s.background_reflectance = *m / *e;
 
@@ -124,22 +194,30 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   if (!(s.output_sampling_m > 0))
     refuse(file, "output sampling",
            "the sensor publishes neither criteria.<name>.gsd_nadir nor criteria.<name>.ground_element: give the output sampling");
-  if (o.adc_bits < 1 || o.adc_bits > 31) refuse(file, "ADC bits", "must lie in 1..31");
-  s.adc_bits = o.adc_bits;
+  const double detector_bits = result(report, vocabulary::detector_adc_bits).value_or(12.0);
+  const int bits = o.adc_bits ? *o.adc_bits : static_cast<int>(detector_bits);
+  if (bits < 1 || bits > 31) refuse(file, "ADC bits", "must lie in 1..31");
+  s.adc_bits = bits;
   s.offset_dn = o.offset_dn;
   s.noise = o.noise;
+  s.shot = o.noise && o.shot;
+  s.dark = o.noise && o.dark;
+  s.read = o.noise && o.read;
+  if (electrons) s.noise = s.shot || s.dark || s.read;
   s.saturation = o.saturation;
   s.quantisation = o.quantisation;
-  if ((s.saturation || s.quantisation) && !(s.saturation_J_m2 > 0))
+  if (!electrons && (s.saturation || s.quantisation) && !(s.saturation_J_m2 > 0))
     refuse(file, "saturation exposure",
            "the detector gives no saturation_exposure: give it as an option, or render without saturation and ADC");
+  if (electrons && (s.saturation || s.quantisation) && !(s.capacity_e > 0 && s.gain_dn_per_e > 0))
+    refuse(file, "saturation capacity", "the detector's saturation capacity and gain must be > 0 to saturate and digitise");
   return s;
 }
 
 double system_mtf(const EarthSceneSetup& s, double nu_x, double nu_y) {
   const double scale = 1.0 / s.ground_to_focal();  // ground cycles/m → focal-plane cycles/m: × h/f'
   const double fx = nu_x * scale, fy = nu_y * scale;
-  return std::abs(optics_otf(s, std::hypot(fx, fy)) * detector_otf(s, fx) * detector_otf(s, fy));
+  return std::abs(optics_otf(s, std::hypot(fx, fy)) * detector_otf_x(s, fx) * detector_otf_y(s, fy));
 }
 
 int earth_output_size(const EarthSceneSetup& s, int input_px) {
@@ -151,7 +229,11 @@ Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
   if (reflectance.empty()) throw std::invalid_argument("render: empty reflectance map");
   const std::int64_t w = reflectance.width, h = reflectance.height;
   // Mirror padding wide enough for the PSF (detector element + ten Airy radii, on the ground).
-  const double psf_ground = (s.element_m + 10.0 * s.wavelength_m * s.f_number) / s.ground_to_focal();
+  const physics::MtfBudget& b = s.budget;
+  const double budget_blur = s.optics == OpticsMtf::budget
+                                 ? b.smear_m + b.tdi_mismatch * b.tdi_stages * b.pitch_m + 4.0 * (b.jitter_rms_m + b.diffusion_rms_m)
+                                 : 0.0;
+  const double psf_ground = (s.element_m + 10.0 * s.wavelength_m * s.f_number + budget_blur) / s.ground_to_focal();
   const auto margin = static_cast<std::int64_t>(std::ceil(2.0 * psf_ground / s.input_sampling_m)) + 4;
   const int nx = detail::fft_friendly_size(static_cast<int>(w + 2 * margin));
   const int ny = detail::fft_friendly_size(static_cast<int>(h + 2 * margin));
@@ -172,11 +254,11 @@ Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
   std::vector<double> fx(static_cast<std::size_t>(half)), fy(static_cast<std::size_t>(ny)), dx(fx.size()), dy(fy.size());
   for (int k = 0; k < half; ++k) {
     fx[static_cast<std::size_t>(k)] = k / (nx * s.input_sampling_m) * scale;
-    dx[static_cast<std::size_t>(k)] = detector_otf(s, fx[static_cast<std::size_t>(k)]);
+    dx[static_cast<std::size_t>(k)] = detector_otf_x(s, fx[static_cast<std::size_t>(k)]);
   }
   for (int k = 0; k < ny; ++k) {
     fy[static_cast<std::size_t>(k)] = (k <= ny / 2 ? k : k - ny) / (ny * s.input_sampling_m) * scale;
-    dy[static_cast<std::size_t>(k)] = detector_otf(s, fy[static_cast<std::size_t>(k)]);
+    dy[static_cast<std::size_t>(k)] = detector_otf_y(s, fy[static_cast<std::size_t>(k)]);
   }
   // Radial optics OTF tabulated in ν up to the grid's largest frequency (step small enough for < 1e-6).
   const double nu_max = std::hypot(fx.back(), 0.5 / s.input_sampling_m * scale) * 1.0001;
@@ -233,17 +315,41 @@ Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
 Image render_earth_scene(const EarthSceneSetup& s, const Image& reflectance, std::uint64_t seed) {
   Image image = filtered_reflectance(s, reflectance);
   detail::Random random(seed);
-  const double k = s.exposure_per_reflectance(), q = s.exposure_per_dn(), top = std::exp2(s.adc_bits) - 1.0;
+  const double q = s.exposure_per_dn(), top = std::exp2(s.adc_bits) - 1.0;
+  auto digitise = [&](double value, double full) {
+    if (s.saturation) value = std::min(value, full);
+    return static_cast<float>(s.quantisation ? std::clamp(std::floor(value / q + s.offset_dn + 0.5), 0.0, top) : value);
+  };
+  if (s.radiometry == EarthRadiometry::exposure) {
+    const double k = s.exposure_per_reflectance();
+    for (float& v : image.pixels) {
+      double exposure = static_cast<double>(v) * k;
+      if (s.noise) exposure += s.nee_J_m2 * random.normal();
+      v = digitise(exposure, s.saturation_J_m2);
+    }
+    return image;
+  }
+  // Electrons (EMVA 1288 eqs. 1-6, 18): the fixed pattern from its own stream, so that it is the same for one
+  // seed whatever the noise switches.
+  detail::Random pattern(seed ^ 0x9e3779b97f4a7c15ULL);
+  const double dark = s.dark ? s.dark_electrons : 0.0;
   for (float& v : image.pixels) {
-    double exposure = static_cast<double>(v) * k;
-    if (s.noise) exposure += s.nee_J_m2 * random.normal();
-    if (s.saturation) exposure = std::min(exposure, s.saturation_J_m2);
-    v = static_cast<float>(s.quantisation ? std::clamp(std::floor(exposure / q + s.offset_dn + 0.5), 0.0, top) : exposure);
+    // PRNU goes with the shot noise (--no-noise shot), DSNU with the dark signal (--no-noise dark).
+    const double g = pattern.normal(), d = pattern.normal();
+    const double gain_pattern = s.shot ? 1.0 + s.prnu * g : 1.0, offset_pattern = s.dsnu_e * d;
+    const double photo = std::max(0.0, s.photo_electrons(static_cast<double>(v)) * gain_pattern);
+    double e = photo + dark;
+    if (s.dark) e += offset_pattern;
+    const double variance = (s.shot ? photo : 0.0) + dark + (s.read ? s.read_noise_e * s.read_noise_e : 0.0);
+    if (variance > 0) e += std::sqrt(variance) * random.normal();
+    v = digitise(e, s.capacity_e);
   }
   return image;
 }
 
-std::string earth_unit(const EarthSceneSetup& s) { return s.quantisation ? "adu" : "J m-2"; }
+std::string earth_unit(const EarthSceneSetup& s) {
+  return s.quantisation ? "adu" : s.radiometry == EarthRadiometry::electrons ? "electron" : "J m-2";
+}
 
 Header earth_scene_header(const EarthSceneSetup& s, std::uint64_t seed) {
   Header h;
@@ -256,7 +362,9 @@ Header earth_scene_header(const EarthSceneSetup& s, std::uint64_t seed) {
   text("ORIGIN", "radchain", "radchain render: pushbroom Earth scene");
   text("INSTRUME", s.sensor_name, "sensor");
   text("SENSFILE", slash == std::string::npos ? s.sensor_file : s.sensor_file.substr(slash + 1), "sensor file");
-  text("BUNIT", earth_unit(s), s.quantisation ? "ADC counts" : "exposure");
+  const bool electrons = s.radiometry == EarthRadiometry::electrons;
+  text("BUNIT", earth_unit(s), s.quantisation ? "ADC counts" : electrons ? "charge" : "exposure");
+  text("RADIOM", electrons ? "electrons" : "exposure", electrons ? "datasheet detector (EMVA 1288)" : "noise-equivalent exposure (Kolobrodov)");
   number("EXPTIME", s.integration_time_s, "[s] line integration time");
   number("ALTITUDE", s.altitude_m, "[m] platform altitude");
   number("FOCALLEN", s.focal_length_m * 1e3, "[mm] focal length");
@@ -266,6 +374,14 @@ Header earth_scene_header(const EarthSceneSetup& s, std::uint64_t seed) {
   text("MTFOPT", to_string(s.optics), "optics MTF model");
   number("MTFWAVE", s.wavelength_m * 1e6, "[um] MTF wavelength");
   if (s.optics == OpticsMtf::kolobrodov_eq7) number("ETA", s.eta, "objective quality (eq. 7)");
+  if (s.optics == OpticsMtf::budget) {
+    number("JITTER", s.budget.jitter_rms_m * 1e6, "[um] rms jitter on the focal plane");
+    number("SMEAR", s.budget.smear_m * 1e6, "[um] linear smear along track (y)");
+    number("DIFFUS", s.budget.diffusion_rms_m * 1e6, "[um] rms diffusion");
+    number("WFE", s.budget.wavefront_error_waves, "[waves] rms wavefront error");
+    number("TDISTAGE", s.budget.tdi_stages, "TDI stages (MTF)");
+    number("TDIMIS", s.budget.tdi_mismatch, "TDI mismatch (pixels per stage)");
+  }
   flag("MTFDET", s.detector_mtf, "detector element MTF applied");
   number("ELEMENT", s.element_m * 1e6, "[um] detector element V_D");
   number("PIXSIZE", s.pitch_m * 1e6, "[um] detector pitch");
@@ -273,19 +389,36 @@ Header earth_scene_header(const EarthSceneSetup& s, std::uint64_t seed) {
   number("GSD", s.output_sampling_m, "[m] output sampling");
   if (s.pixel_gsd_m > 0) number("PIXGSD", s.pixel_gsd_m, "[m] pixel-pitch GSD h p / f'");
   if (s.ground_element_m > 0) number("GRNDELEM", s.ground_element_m, "[m] designed ground element");
-  number("KIRRAD", s.irradiance_per_reflectance_W_m2, "[W m-2] image irradiance per reflectance");
-  number("NEE", s.nee_J_m2, "[J m-2] noise-equivalent exposure");
-  if (s.saturation_J_m2 > 0) number("HSAT", s.saturation_J_m2, "[J m-2] saturation exposure");
-  if (s.quantisation) {
-    h.push_back({"ADCBITS", static_cast<std::int64_t>(s.adc_bits), "ADC resolution"});
-    number("EXPPERDN", s.exposure_per_dn(), "[J m-2/adu] HSAT / 2^bits");
-    number("OFFSET", s.offset_dn, "[adu] ADC pedestal");
+  if (electrons) {
+    number("EPERRHO", s.electrons_per_reflectance, "[e-] electrons per unit reflectance");
+    number("PATHE", s.path_electrons, "[e-] path radiance electrons");
+    number("DARKE", s.dark_electrons, "[e-] dark electrons per line");
+    number("READNOIS", s.read_noise_e, "[e-] read noise per pixel");
+    number("PRNU", s.prnu, "photo-response non-uniformity s_g");
+    number("DSNU", s.dsnu_e, "[e-] dark-signal non-uniformity");
+    number("GAIN", s.gain_dn_per_e, "[adu/e-] system gain K");
+    number("FULLWELL", s.capacity_e, "[e-] saturation capacity");
+    if (s.quantisation) {
+      h.push_back({"ADCBITS", static_cast<std::int64_t>(s.adc_bits), "ADC resolution"});
+      number("OFFSET", s.offset_dn, "[adu] ADC pedestal");
+    }
+    number("RHO", s.scene_reflectance, "the chain's scene reflectance");
+    number("SNR", s.snr, "chain SNR of the scene pixel");
+  } else {
+    number("KIRRAD", s.irradiance_per_reflectance_W_m2, "[W m-2] image irradiance per reflectance");
+    number("NEE", s.nee_J_m2, "[J m-2] noise-equivalent exposure");
+    if (s.saturation_J_m2 > 0) number("HSAT", s.saturation_J_m2, "[J m-2] saturation exposure");
+    if (s.quantisation) {
+      h.push_back({"ADCBITS", static_cast<std::int64_t>(s.adc_bits), "ADC resolution"});
+      number("EXPPERDN", s.exposure_per_dn(), "[J m-2/adu] HSAT / 2^bits");
+      number("OFFSET", s.offset_dn, "[adu] ADC pedestal");
+    }
+    number("DRHO", s.reflectance_difference, "design contrast (reflectance)");
+    number("RHO0", s.background_reflectance, "design background reflectance");
+    number("SNR", s.snr, "chain SNR of DRHO");
   }
-  number("DRHO", s.reflectance_difference, "design contrast (reflectance)");
-  number("RHO0", s.background_reflectance, "design background reflectance");
-  number("SNR", s.snr, "chain SNR of DRHO");
   h.push_back({"SEED", static_cast<std::int64_t>(seed), "noise seed (mt19937_64)"});
-  flag("NNOISE", s.noise, "NEE noise simulated");
+  flag("NNOISE", s.noise, electrons ? "shot, dark or read noise simulated" : "NEE noise simulated");
   flag("NSAT", s.saturation, "saturation simulated");
   flag("NADC", s.quantisation, "ADC quantisation simulated");
   return h;

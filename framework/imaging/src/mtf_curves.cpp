@@ -62,9 +62,8 @@ std::string budget_criterion(const Report& report) {
 
 bool has_mtf_budget(const Report& report) { return !budget_criterion(report).empty(); }
 
-MtfBudgetCurves mtf_budget_curves(const Report& report, int points) {
-  MtfBudgetCurves c;
-  c.criterion = budget_criterion(report);
+physics::MtfBudget mtf_budget(const Report& report, std::string* criterion_name) {
+  const std::string criterion = budget_criterion(report);
   auto need = [&](const std::string& name) {
     const auto v = report.value(name);
     if (!v) throw InputError(SourceLocation{report.sensor_file, 0, 0}, "mtf", name,
@@ -72,18 +71,26 @@ MtfBudgetCurves mtf_budget_curves(const Report& report, int points) {
                              "and a giqe criterion");
     return *v;
   };
-  if (c.criterion.empty()) need("criteria.<name>.mtf_nyquist_system");
-  physics::MtfBudget& b = c.budget;
+  if (criterion.empty()) need("criteria.<name>.mtf_nyquist_system");
+  physics::MtfBudget b;
   b.f_number = need(std::string(vocabulary::optics_f_number.name));
   b.obscuration = report.value(std::string(vocabulary::optics_obscuration.name)).value_or(0.0);
-  b.wavelength_m = need(c.criterion + ".mtf_wavelength");
-  b.pitch_m = need(c.criterion + ".sample_pitch");
-  b.jitter_rms_m = need(c.criterion + ".jitter_rms");
-  b.smear_m = need(c.criterion + ".smear_length");
-  b.diffusion_rms_m = need(c.criterion + ".diffusion_rms");
-  b.wavefront_error_waves = need(c.criterion + ".wavefront_error");
-  b.tdi_stages = need(c.criterion + ".tdi_stages");
-  b.tdi_mismatch = need(c.criterion + ".tdi_mismatch");
+  b.wavelength_m = need(criterion + ".mtf_wavelength");
+  b.pitch_m = need(criterion + ".sample_pitch");
+  b.jitter_rms_m = need(criterion + ".jitter_rms");
+  b.smear_m = need(criterion + ".smear_length");
+  b.diffusion_rms_m = need(criterion + ".diffusion_rms");
+  b.wavefront_error_waves = need(criterion + ".wavefront_error");
+  b.tdi_stages = need(criterion + ".tdi_stages");
+  b.tdi_mismatch = need(criterion + ".tdi_mismatch");
+  if (criterion_name) *criterion_name = criterion;
+  return b;
+}
+
+MtfBudgetCurves mtf_budget_curves(const Report& report, int points) {
+  MtfBudgetCurves c;
+  c.budget = mtf_budget(report, &c.criterion);
+  const physics::MtfBudget& b = c.budget;
   c.nyquist_per_m = physics::nyquist_frequency_per_m(b.pitch_m);
   const int n = points % 2 ? points : points + 1;  // odd: the middle point is Nyquist exactly
   for (int i = 0; i < n; ++i) {

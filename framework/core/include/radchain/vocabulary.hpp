@@ -184,6 +184,14 @@ inline constexpr Term detector_noise_equivalent_reflectance{"detector.noise_equi
                                                             "at the target's sun angle"};
 inline constexpr Term detector_saturation_radiance{"detector.saturation_radiance", "W m-2 sr-1 m-1",
                                                    "band-averaged spectral radiance that fills the well or the ADC"};
+// What `render` needs to draw an Earth scene with a datasheet detector (issue 14, item 8): the scene's pixel
+// splits into the ground's light (∝ ρ) and the path radiance, plus the detector's fixed-pattern terms
+inline constexpr Term detector_path_radiance_electrons{"detector.path_radiance_electrons", "electron",
+                                                       "the atmosphere's path radiance in the scene's pixel (0 without one)"};
+inline constexpr Term detector_binning{"detector.binning", "1", "pixels binned per side b (b × b native pixels read as one)"};
+inline constexpr Term detector_exposures{"detector.exposures", "1", "frames co-added M"};
+inline constexpr Term detector_prnu{"detector.prnu", "1", "photo-response non-uniformity s_g (EMVA 1288 §2.4), a fraction"};
+inline constexpr Term detector_dsnu{"detector.dsnu", "electron", "dark-signal non-uniformity σ_o of one native pixel (EMVA 1288 §2.4)"};
 
 // Every term, for look-ups by name (describe, the check that a plugin does not declare a term as a plain string).
 inline constexpr std::array all{
@@ -207,7 +215,8 @@ inline constexpr std::array all{
     // Radiometry of Earth-observation cameras (issue 14, item 3)
     target_reflectance, detector_scene_radiance, detector_reference_radiance, detector_reference_signal_electrons,
     detector_snr_at_reference, detector_noise_equivalent_radiance, detector_noise_equivalent_reflectance,
-    detector_saturation_radiance,
+    detector_saturation_radiance, detector_path_radiance_electrons, detector_binning, detector_exposures,
+    detector_prnu, detector_dsnu,
     // Datasheet detectors and telescopes (issue 13)
     detector_peak_pixel_fill, detector_saturation_capacity, detector_peak_pixel_electrons,
     detector_noise_equivalent_area, detector_system_gain, detector_tdi_stages, target_zero_point_photon_rate,

@@ -34,6 +34,8 @@ struct MtfBudgetCurves {
 };
 // Whether the report has a budget (a giqe criterion), and the curves; mtf_budget_curves throws InputError if not.
 bool has_mtf_budget(const Report& report);
+// The budget's parameters as the report states them (criterion name in `criterion`); throws InputError if none.
+physics::MtfBudget mtf_budget(const Report& report, std::string* criterion = nullptr);
 MtfBudgetCurves mtf_budget_curves(const Report& report, int points = 201);
 // CSV: frequency_mm-1, diffraction, pixel, jitter, smear, diffusion, wavefront, tdi, system; a comment line names
 // the Nyquist frequency and the system MTF there.
