@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -49,25 +50,50 @@ TEST(EarthObservation, WorldView2At20DegreesMatchesTheClosedForm) {
 
 // A pushbroom reads a line each time the ground moves one line spacing: the along-track GSD for square samples, or
 // the published sampling of an oversampling camera (SPOT-5 HRS: 5 m lines for 10 m pixels). Line time = spacing /
-// ground speed, the ground speed √(GM/(R+h)) R/(R+h) of a circular orbit over a non-rotating Earth.
+// ground speed; the ground speed is that of the sub-satellite point over the Earth's surface, which turns under a
+// retrograde sun-synchronous orbit: v² = v₀² − 2 v₀ ω R cos i + (ω R cos φ)², v₀ = √(GM/(R+h)) R/(R+h) (the
+// closed form is checked against the Earth-fixed track in tests/core/physics/earth_geometry_test.cpp).
+std::string without_lines(const std::string& file, std::initializer_list<const char*> keys) {
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* key : keys) {
+    const auto at = text.find(std::string("\n") + key + " ");
+    if (at != std::string::npos) text.erase(at + 1, text.find('\n', at + 1) - at);
+  }
+  return text;
+}
+
 TEST(EarthObservation, LineTimeFromTheAlongTrackSampling) {
-  Chain chain = load_sensor(root + "sensors/spot-5-hrs-fore.toml");
+  const std::string file = root + "sensors/spot-5-hrs-fore.toml";
+  Chain chain = load_sensor(file);
   const Report r = chain.run();
   const double gm = 3.986004418e14, R = value(r, "platform.earth_radius"), h = value(r, "platform.altitude");
-  const double ground_speed = std::sqrt(gm / (R + h)) * R / (R + h);
+  const double v0 = std::sqrt(gm / (R + h)) * R / (R + h), u = 7.292115e-5 * R, cos_i = std::cos(98.7 * std::numbers::pi / 180);
+  const double ground_speed = std::sqrt(v0 * v0 - 2 * v0 * u * cos_i + u * u);  // at the equator
+  EXPECT_NEAR(value(r, "platform.inertial_ground_speed"), v0, 1e-6 * v0);
   EXPECT_NEAR(value(r, "platform.ground_speed"), ground_speed, 1e-6 * ground_speed);
+  EXPECT_NEAR(ground_speed - v0, 86.1, 0.5);  // ω R |cos i| = 70 m/s plus (ω R)²/(2 v₀) = 16 m/s
   EXPECT_NEAR(value(r, "criteria.gsd.line_time"), 5.0 / ground_speed, 1e-9 * 5.0 / ground_speed);
-  // Without the key: square samples, the along-track GSD at the look.
-  Chain square = load_sensor_text(
-      [&] {
-        std::ifstream in(root + "sensors/spot-5-hrs-fore.toml");
-        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        const auto at = text.find("along_track_sampling");
-        return text.erase(at, text.find('\n', at) - at);
-      }(),
-      root + "sensors/spot-5-hrs-fore.toml");
+  // Without inclination and latitude: a non-rotating Earth, v₀.
+  Chain inertial = load_sensor_text(without_lines(file, {"inclination", "latitude"}), file);
+  EXPECT_NEAR(value(inertial.run(), "platform.ground_speed"), v0, 1e-6 * v0);
+  // Without the sampling key: square samples, the along-track GSD at the look.
+  Chain square = load_sensor_text(without_lines(file, {"along_track_sampling"}), file);
   const Report s = square.run();
   EXPECT_NEAR(value(s, "criteria.gsd.line_time"), value(s, "criteria.gsd.gsd_along_track") / ground_speed, 1e-9);
+}
+
+TEST(EarthObservation, RotatingEarthNeedsBothKeysAndAReachableLatitude) {
+  const std::string file = root + "sensors/spot-5-hrs-fore.toml";
+  EXPECT_THROW(load_sensor_text(without_lines(file, {"latitude"}), file), InputError);
+  EXPECT_THROW(load_sensor_text(without_lines(file, {"inclination"}), file), InputError);
+  // 98.7° reaches ±81.3°: 85° is never under the track.
+  try {
+    load_sensor(file, {Override{"platform.latitude", "\"85 deg\""}});
+    ADD_FAILURE() << "latitude 85 deg accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("never passes over latitude 85"), std::string::npos) << e.what();
+  }
 }
 
 TEST(EarthObservation, LookPastTheHorizonIsAnInputError) {

@@ -2,9 +2,11 @@
 // cosines and of sines in the triangle Earth centre – satellite – ground point, the flat-Earth limits, and the
 // pixel-pitch GSD of a real imager computed by hand.
 #include "radchain/physics/earth_geometry.hpp"
+#include "radchain/physics/pushbroom.hpp"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -109,3 +111,30 @@ TEST(EarthGeometry, OffNadirAngleAndLineTime) {
 }
 
 }  // namespace
+
+// The ground speed over the rotating Earth (Clairaut's closed form) against a direct computation: the sub-satellite
+// point moved along its inclined great circle on the inertial sphere, turned into Earth-fixed axes, differentiated.
+TEST(EarthGeometry, GroundSpeedOverTheRotatingEarthMatchesTheEarthFixedTrack) {
+  constexpr double radius = 6371e3, h = 822e3, w = 7.292115e-5;
+  const double v0 = radchain::physics::ground_track_speed_m_s(h, 3.986004418e14, radius);
+  for (double i_deg : {0.0, 28.5, 51.6, 90.0, 98.7, 150.0})
+    for (double u_deg : {0.0, 20.0, 45.0, 80.0, 135.0, 250.0}) {
+      const double i = i_deg * pi / 180, u0 = u_deg * pi / 180, rate = v0 / radius;
+      auto earth_fixed = [&](double t) {  // R_z(−ω t) · R · (cos u, sin u cos i, sin u sin i)
+        const double u = u0 + rate * t, x = std::cos(u), y = std::sin(u) * std::cos(i), z = std::sin(u) * std::sin(i);
+        const double c = std::cos(w * t), s = std::sin(w * t);
+        return std::array{radius * (c * x + s * y), radius * (-s * x + c * y), radius * z};
+      };
+      const double dt = 1e-2;
+      const auto a = earth_fixed(-dt), b = earth_fixed(dt);
+      const double direct = std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]) / (2 * dt);
+      const double latitude = std::asin(std::sin(u0) * std::sin(i));
+      EXPECT_NEAR(radchain::physics::rotating_earth_ground_speed_m_s(v0, i, latitude, radius, w), direct, 1e-6 * direct)
+          << "i = " << i_deg << " deg, u = " << u_deg << " deg";
+    }
+  // An equatorial prograde orbit loses ω R exactly; a retrograde one gains it.
+  EXPECT_NEAR(radchain::physics::rotating_earth_ground_speed_m_s(v0, 0, 0, radius, w), v0 - w * radius, 1e-9);
+  EXPECT_NEAR(radchain::physics::rotating_earth_ground_speed_m_s(v0, pi, 0, radius, w), v0 + w * radius, 1e-9);
+  // A latitude the track never reaches is refused.
+  EXPECT_THROW(radchain::physics::rotating_earth_ground_speed_m_s(v0, 10 * pi / 180, 30 * pi / 180, radius, w), std::invalid_argument);
+}

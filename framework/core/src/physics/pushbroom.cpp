@@ -1,6 +1,9 @@
 #include "radchain/physics/pushbroom.hpp"
 
 #include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
 
 namespace radchain::physics {
 
@@ -15,6 +18,16 @@ double ground_track_speed_m_s(double altitude_m, double gm_m3_s2, double earth_r
   // The sub-satellite point moves with the same angular rate v/(R + h) on a sphere of radius R.
   return circular_orbit_speed_m_s(altitude_m, gm_m3_s2, earth_radius_m) * earth_radius_m /
          (earth_radius_m + altitude_m);
+}
+
+double rotating_earth_ground_speed_m_s(double v0, double inclination_rad, double latitude_rad, double earth_radius_m,
+                                       double rotation_rate_rad_s) {
+  const double cos_lat = std::cos(latitude_rad), cos_i = std::cos(inclination_rad);
+  if (cos_lat < std::abs(cos_i) * (1 - 1e-12))
+    throw std::invalid_argument("the ground track of an orbit inclined " + std::to_string(inclination_rad * 180 / std::numbers::pi) +
+                                " deg never reaches latitude " + std::to_string(latitude_rad * 180 / std::numbers::pi) + " deg");
+  const double u = rotation_rate_rad_s * earth_radius_m;
+  return std::sqrt(v0 * v0 - 2 * v0 * u * cos_i + u * u * cos_lat * cos_lat);
 }
 
 // ---- Scene ------------------------------------------------------------------------------------------------

@@ -30,6 +30,19 @@ double circular_orbit_speed_m_s(double altitude_m, double gm_m3_s2 = earth_gm_m3
 double ground_track_speed_m_s(double altitude_m, double gm_m3_s2 = earth_gm_m3_s2,
                               double earth_radius_m = earth_mean_radius_m);
 
+// WGS 84 rotation rate of the Earth ω_E (rad s-1, NIMA TR8350.2).
+inline constexpr double earth_rotation_rate_rad_s = 7.292115e-5;
+
+// Speed of the sub-satellite point over the rotating Earth's surface, at latitude φ on a circular orbit of
+// inclination i. On the inertial sphere the point moves at v₀ (above) along a great circle whose azimuth α
+// obeys Clairaut's relation cos φ sin α = cos i; the surface moves east at ω R cos φ. The difference:
+//   v² = v₀² − 2 v₀ ω R cos i + (ω R cos φ)²
+// (prograde orbits gain less than ω R over the ground, retrograde sun-synchronous ones more). Throws
+// std::invalid_argument when the ground track never reaches φ (cos φ < |cos i|).
+double rotating_earth_ground_speed_m_s(double inertial_ground_speed_m_s, double inclination_rad, double latitude_rad,
+                                       double earth_radius_m = earth_mean_radius_m,
+                                       double rotation_rate_rad_s = earth_rotation_rate_rad_s);
+
 // ---- Scene: Sun, atmosphere, ground contrast --------------------------------------------------------------
 
 // Solar irradiance in the band λ1..λ2 (Kolobrodov, after Pavlov 1974): E's = E_s [z(λ2) − z(λ1)], z the fraction
