@@ -74,15 +74,9 @@ int validate_command(const ValidateCommand& c) {
                c.sensor.sensor, edge.angle_deg, edge.mtf_at_nyquist_measured, edge.mtf_at_nyquist_model, 100 * edge.max_relative_error);
     fmt::print("  {} edge MTF within {:.0f} %\n", verdict(edge.passed()), 100 * edge.tolerance);
     const FlatFieldCheck flat = check_earth_flat_field(chain, report, scene, size, c.seed);
-    if (flat.what.starts_with("earth: flat field at"))
-      fmt::print("  {} flat field at the scene's reflectance: measured SNR {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; "
-                 "noise {:.4g} vs {:.4g} e-\n",
-                 verdict(flat.passed(max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
-                 flat.measured_noise, flat.predicted_noise);
-    else
-      fmt::print("  {} flat fields: measured SNR of Δρ {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.4g} vs {:.4g} J m-2\n",
-                 verdict(flat.passed(max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
-                 flat.measured_noise, flat.predicted_noise);
+    fmt::print("  {} {} {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.4g} vs {:.4g} {}\n",
+               verdict(flat.passed(max_z)), flat.measured_label, flat.measured_snr, flat.snr_sigma, flat.predicted_snr,
+               flat.chain_snr, flat.measured_noise, flat.predicted_noise, flat.noise_unit);
   }
   return ok ? 0 : 1;
 }

@@ -227,6 +227,8 @@ FlatFieldCheck check_earth_flat_field(Chain& chain, const Report& report, EarthS
     const double photo = s.photo_electrons(s.scene_reflectance);
     const double dark = s.dark ? s.dark_electrons : 0.0;
     check.what = "earth: flat field at the scene's reflectance";
+    check.measured_label = "flat field at the scene's reflectance: measured SNR";
+    check.noise_unit = "e-";
     check.samples = m.n;
     check.measured_noise = std::sqrt(m.variance());
     check.measured_snr = (m.mean() - dark) / check.measured_noise;
@@ -247,6 +249,8 @@ FlatFieldCheck check_earth_flat_field(Chain& chain, const Report& report, EarthS
   for (float v : a.pixels) ma.add(exposure(v));
   for (float v : b.pixels) mb.add(exposure(v));
   check.what = "earth: flat fields at rho0 and rho0 + drho";
+  check.measured_label = "flat fields: measured SNR of Δρ";
+  check.noise_unit = "J m-2";
   check.samples = ma.n;
   check.measured_noise = std::sqrt(0.5 * (ma.variance() + mb.variance()));
   check.measured_snr = (mb.mean() - ma.mean()) / check.measured_noise;

@@ -122,9 +122,12 @@ struct FlatFieldCheck {
   double predicted_snr = 0;  // the chain's budget with the renderer's quantisation noise
   double snr_sigma = 0;      // statistical error of the measured SNR
   double measured_noise = 0, predicted_noise = 0;  // electrons (space) or J m-2 (earth), per window/pixel
+  std::string measured_label;  // what the measured SNR is of, for the report line ("measured SNR of Δρ")
+  std::string noise_unit;      // "e-" or "J m-2"
   bool passed(double max_z = 4.0) const;  // |measured − predicted| ≤ max_z σ
 };
-// (c), pushbroom: flat fields at ρ_0 and ρ_0 + Δρ (the target's), size×size output pixels.
+// (c), pushbroom: flat fields at ρ_0 and ρ_0 + Δρ (the target's), size×size output pixels; with a datasheet
+// detector (electron radiometry) one flat field at the chain's reflectance against its detector.snr.
 FlatFieldCheck check_earth_flat_field(Chain& chain, const Report& report, EarthSceneOptions scene, int size = 256,
                                       std::uint64_t seed = 1);
 // (c), point target: a flat field of S/n² electrons per pixel (the limiting-magnitude signal spread evenly),
