@@ -60,6 +60,18 @@ def test_scene_equals_the_command_line(cli, tmp_path, source_dir):
             assert float(cards[key]) == pytest.approx(value, rel=1e-12), key
 
 
+def test_datasheet_imager_scene_in_electrons(cli, tmp_path, source_dir):
+    # A real imager (emva1288 on a reflectance target, a giqe MTF budget): the same pixels as the command line, and
+    # without noise or ADC a flat map is the chain's own signal electrons at the file's reflectance.
+    sensor = source_dir / "sensors" / "sentinel-2a-msi-b4.toml"
+    image = radchain.render(sensor, seed=2)
+    pixels, cards = cli_render(cli, tmp_path, sensor, "--seed", "2")
+    np.testing.assert_array_equal(image.pixels, pixels)
+    assert image.header["RADIOM"] == "electrons" and image.header["MTFOPT"] == "budget"
+    signal = radchain.load(sensor).run()["detector.signal_electrons"]
+    assert image.header["EPERRHO"] * image.header["RHO"] == pytest.approx(signal, rel=1e-12)
+
+
 def test_refusals_are_input_errors(sbv):
     with pytest.raises(radchain.InputError, match=r"radchain.render: --width = 0: out of range"):
         radchain.render(sbv, width=0)

@@ -76,6 +76,8 @@ const Shipped shipped[] = {
     {"swift_uvot_uvw1_throughput.csv", "1"},
     {"galex_fuv_throughput.csv", "1"},
     {"galex_nuv_throughput.csv", "1"},
+    {"roman_wfi_sca01_f062_throughput.csv", "1"},
+    {"roman_wfi_sca01_f158_throughput.csv", "1"},
 };
 
 TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
