@@ -68,4 +68,29 @@ TEST(MergeHostile, HeaderFieldsAreChecked) {
   }
 }
 
+// merge_fuzz (a long run on tmpfs, session 6): a sweep shard that repeats a point wrote one record more than its
+// .npy header promised, and the writer's own consistency check ended the process (std::logic_error). A sweep has
+// one row per point; a repeat is refused as the shard's fault, for every output format.
+TEST(MergeHostile, ASweepShardRepeatingAPointIsRefused) {
+  Scratch scratch;
+  const CliResult sweep = run_cli(scratch, "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:3' --results target.magnitude"
+                                           " --shard 1/1 --out '" + (scratch / "a.shard").string() + "' --format npy");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  std::string text = read_text(scratch / "a.shard");
+  // Write the last data row twice and say so in the end line: only the repeat is wrong.
+  const auto end = text.find("# end rows=3");
+  ASSERT_NE(end, std::string::npos) << text;
+  const auto last = text.rfind('\n', end - 2) + 1;
+  text.insert(end, text.substr(last, end - last));
+  text.replace(text.find("# end rows=3"), 12, "# end rows=4");
+  write_text(scratch / "b.shard", text);
+  for (const std::string out : {"c.npy", "c.csv"}) {
+    const CliResult r = run_cli(scratch, "merge '" + (scratch / "b.shard").string() + "' --out '" + (scratch / out).string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << out << ": " << r.err;
+    EXPECT_EQ(lines_of(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("is not the next point"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(scratch / out)) << out;
+  }
+}
+
 }  // namespace

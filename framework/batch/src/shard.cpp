@@ -164,8 +164,9 @@ struct ShardReader {
       throw fail(fmt::format("row {}: point \"{}\" is not a count", rows + 1, row.front()));
     }
     row.erase(row.begin());
-    // Rows come in point order: the current point again, or the next point of this shard.
-    const bool same = next_index > 0 && row_point == points[next_index - 1];
+    // Rows come in point order: the next point of this shard, or (a catalogue: a file's rows) the current point
+    // again. A sweep has one row per point: a repeated one would write more records than its header promises.
+    const bool same = fields.at("kind") == "catalogue" && next_index > 0 && row_point == points[next_index - 1];
     if (!same) {
       if (next_index >= points.count || row_point != points[next_index])
         throw fail(fmt::format("row {}: point {} is not the next point of shard {}/{} ({})", rows + 1, row_point,
