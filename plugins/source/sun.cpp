@@ -8,6 +8,7 @@
 #include "radchain/physics/photometry.hpp"
 #include "radchain/physics/planck.hpp"
 #include "radchain/physics/pushbroom.hpp"
+#include "radchain/physics/solar_position.hpp"
 #include "radchain/plugin.hpp"
 
 #include <algorithm>
@@ -29,6 +30,8 @@ const Schema& schema() {
       quantity("total_irradiance", "W m-2", "1361 W/m2").above(0).affects_spectrum()
           .described("rescale the spectrum to this total at 1 AU (required for model = planck)"),
       quantity("distance", "m", "1 AU").fallback("1 AU").above(0).described("Sun-target distance (inverse-square)"),
+      integer("day_of_year", "172").at_least(1).at_most(366)
+          .described("the scene's day: sets the distance and publishes the declination (Spencer 1971)"),
       spectrum_file("v_lambda", "1", "cie_1924_photopic_V_1nm.csv").fallback("cie_1924_photopic_V_1nm.csv")
           .described("photopic luminous efficiency V(λ) for the illuminance"),
       number("visual_magnitude", "-26.73").fallback("-26.73").at_least(-30).at_most(-20).scales(Scaling::magnitude)
@@ -56,6 +59,8 @@ class Sun final : public Stage {
     if (p.has("band_min") != p.has("band_max"))
       p.reject(p.has("band_min") ? "band_min" : "band_max", "band_min and band_max go together (the working band λ1..λ2)");
     if (p.has("band_min") && !(p.get("band_max") > p.get("band_min"))) p.reject("band_max", "must be larger than band_min");
+    if (p.has("day_of_year") && p.given("distance"))
+      p.reject("day_of_year", "sets the Earth-Sun distance: give it or distance, not both");
     if ((p.has("z_band_min") || p.has("z_band_max")) && !p.has("band_min"))
       p.reject(p.has("z_band_min") ? "z_band_min" : "z_band_max", "a pinned z needs the working band (band_min, band_max)");
   }
@@ -87,7 +92,12 @@ class Sun final : public Stage {
     computed_illuminance_ = computed_illuminance;
     id_efficacy_ = c.declare("luminous_efficacy", "lm W-1", "E_v / E_e", "lm W-1");
     id_magnitude_ = c.declare(vocabulary::source_visual_magnitude, "Pan 2010 eq. (1) reference m_sun");
-    id_distance_ = c.declare(vocabulary::source_distance, "input", "AU");
+    dated_ = params_.has("day_of_year");
+    id_distance_ = c.declare(vocabulary::source_distance,
+                             dated_ ? "r = 1 AU ((r₀/r)²)^(−½) on day d (Spencer 1971)" : "input", "AU");
+    if (dated_)
+      id_declination_ = c.declare(vocabulary::source_solar_declination,
+                                  "δ(d) = 0.006918 − 0.399912 cos Γ + … (Spencer 1971, Γ = 2π(d−1)/365)", "deg");
     has_band_ = params_.has("band_min");
     if (has_band_) prepare_band(c, spectrum);
   }
@@ -132,7 +142,9 @@ class Sun final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double au_over_d = constants::astronomical_unit_m / *distance_;
+    const double day = dated_ ? params_.get("day_of_year") : 0.0;
+    const double distance = dated_ ? physics::earth_sun_distance_au(day) * constants::astronomical_unit_m : *distance_;
+    const double au_over_d = constants::astronomical_unit_m / distance;
     const double inverse_square = au_over_d * au_over_d;
     c.light.illumination_scale = inverse_square;
     c.results.set(id_total_, total_ * inverse_square);
@@ -140,7 +152,8 @@ class Sun final : public Stage {
     if (id_illuminance_computed_) c.results.set(*id_illuminance_computed_, computed_illuminance_ * inverse_square);
     c.results.set(id_efficacy_, illuminance_ / total_);
     c.results.set(id_magnitude_, *magnitude_);
-    c.results.set(id_distance_, *distance_);
+    c.results.set(id_distance_, distance);
+    if (id_declination_) c.results.set(*id_declination_, physics::solar_declination_rad(day));
     if (has_band_) {
       for (int i = 0; i < 2; ++i) {
         c.results.set(id_z_[i], z_[i]);
@@ -157,6 +170,8 @@ class Sun final : public Stage {
   std::optional<ResultId> id_illuminance_computed_;  // only when the illuminance is pinned
   double total_ = 0, illuminance_ = 0, computed_illuminance_ = 0;
   ResultId id_total_{}, id_illuminance_{}, id_efficacy_{}, id_magnitude_{}, id_distance_{};
+  std::optional<ResultId> id_declination_;
+  bool dated_ = false;
   bool has_band_ = false, pinned_z_[2] = {false, false};
   double z_[2] = {0, 0}, z_computed_[2] = {0, 0};
   ResultId id_z_[2]{}, id_z_computed_[2]{}, id_band_{};
@@ -166,8 +181,8 @@ class Sun final : public Stage {
 
 RADCHAIN_PLUGIN(Sun, {
     .summary = "the Sun outside the atmosphere: AM0 table or Planck model, at a distance",
-    .reference = "ASTM E-490-00a; Wehrli 1985; CIE 015 photometry; Planck",
+    .reference = "ASTM E-490-00a; Wehrli 1985; CIE 015 photometry; Planck; Spencer 1971 (day of year)",
     .schema = schema,
     .publishes = {vocabulary::source_illuminance, vocabulary::source_visual_magnitude, vocabulary::source_distance,
-                  vocabulary::source_band_irradiance},
+                  vocabulary::source_band_irradiance, vocabulary::source_solar_declination},
 })

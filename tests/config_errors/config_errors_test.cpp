@@ -98,6 +98,8 @@ const Case cases[] = {
     {"streak_unknown_tracking"},
     {"streak_window_photometry"},
     {"airmass_outside_lut"},
+    {"sun_below_horizon"},
+    {"dated_scene_without_day"},
 };
 
 // How a case reads in test names and ctest listings (instead of a byte dump).

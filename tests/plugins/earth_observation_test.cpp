@@ -7,6 +7,7 @@
 #include "radchain/physics/giqe.hpp"
 
 #include "radchain/sensor_file.hpp"
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -168,3 +169,58 @@ TEST(EarthObservation, Giqe4OptionUsesTheEdgeOvershoot) {
 }
 
 }  // namespace
+
+// A dated scene (issue 14 item 2): the sun's day_of_year sets its distance and declination, the ground's latitude
+// and local solar time its zenith angle; against the closed forms computed here and the undated chain.
+namespace dated {
+std::string sentinel_with(const std::string& source_extra, const std::string& target_lines) {
+  std::ifstream in(root + "sensors/sentinel-2a-msi-b4.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto source = text.find("plugin = \"sun\"");
+  text.insert(text.find('\n', source) + 1, source_extra);
+  const auto zenith = text.find("solar_zenith = \"30 deg\"");
+  text.replace(zenith, text.find('\n', zenith) - zenith, target_lines);
+  return text;
+}
+
+TEST(DatedScene, DayLatitudeAndTimeGiveTheSunsZenithAndDistance) {
+  const std::string file = root + "sensors/sentinel-2a-msi-b4.toml";
+  Chain chain = load_sensor_text(sentinel_with("day_of_year = 172\n", "latitude = \"43.6 deg\"\nlocal_solar_time = \"10.5 h\""), file);
+  const Report r = chain.run();
+  const double pi = std::numbers::pi, g = 2 * pi * 171 / 365;
+  const double dec = 0.006918 - 0.399912 * std::cos(g) + 0.070257 * std::sin(g) - 0.006758 * std::cos(2 * g) +
+                     0.000907 * std::sin(2 * g) - 0.002697 * std::cos(3 * g) + 0.00148 * std::sin(3 * g);
+  const double lat = 43.6 * pi / 180, h = -1.5 * pi / 12;
+  const double mu = std::sin(lat) * std::sin(dec) + std::cos(lat) * std::cos(dec) * std::cos(h);
+  EXPECT_NEAR(value(r, "source.solar_declination"), dec, 1e-12);
+  EXPECT_NEAR(value(r, "target.cos_solar_zenith"), mu, 1e-12);
+  EXPECT_NEAR(std::cos(value(r, "target.solar_zenith")), mu, 1e-12);
+  const double r_au = 1 / std::sqrt(1.000110 + 0.034221 * std::cos(g) + 0.001280 * std::sin(g) + 0.000719 * std::cos(2 * g) +
+                                    0.000077 * std::sin(2 * g));
+  EXPECT_NEAR(value(r, "source.distance"), r_au * 149597870700.0, 1.0);
+  // The same scene undated, at that zenith and distance: the same signal.
+  Chain undated = load_sensor(file, {Override{"target.solar_zenith", fmt::format("\"{:.17g} rad\"", std::acos(mu))},
+                                     Override{"source.distance", fmt::format("\"{:.17g} m\"", r_au * 149597870700.0)}});
+  EXPECT_NEAR(value(r, "detector.signal_electrons"), value(undated.run(), "detector.signal_electrons"),
+              1e-9 * value(r, "detector.signal_electrons"));
+}
+
+TEST(DatedScene, NightMissingPiecesAndTwoZenithsAreRefused) {
+  const std::string file = root + "sensors/sentinel-2a-msi-b4.toml";
+  // Polar night: 80° N on 21 December at noon, the Sun 13.4° below the horizon.
+  try {
+    load_sensor_text(sentinel_with("day_of_year = 355\n", "latitude = \"80 deg\"\nlocal_solar_time = \"12 h\""), file).run();
+    ADD_FAILURE() << "a scene at night was evaluated";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("below the horizon"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(load_sensor_text(sentinel_with("", "latitude = \"43.6 deg\"\nlocal_solar_time = \"10.5 h\""), file), InputError);
+  EXPECT_THROW(load_sensor_text(sentinel_with("day_of_year = 172\n", "latitude = \"43.6 deg\""), file), InputError);
+  EXPECT_THROW(load_sensor_text(sentinel_with("day_of_year = 172\n",
+                                              "latitude = \"43.6 deg\"\nlocal_solar_time = \"10.5 h\"\nsolar_zenith = \"30 deg\""),
+                                file),
+               InputError);
+  EXPECT_THROW(load_sensor_text(sentinel_with("day_of_year = 172\ndistance = \"1 AU\"\n", "solar_zenith = \"30 deg\""), file),
+               InputError);
+}
+}  // namespace dated

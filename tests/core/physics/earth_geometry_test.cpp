@@ -3,6 +3,7 @@
 // pixel-pitch GSD of a real imager computed by hand.
 #include "radchain/physics/earth_geometry.hpp"
 #include "radchain/physics/pushbroom.hpp"
+#include "radchain/physics/solar_position.hpp"
 
 #include <gtest/gtest.h>
 
@@ -137,4 +138,30 @@ TEST(EarthGeometry, GroundSpeedOverTheRotatingEarthMatchesTheEarthFixedTrack) {
   EXPECT_NEAR(radchain::physics::rotating_earth_ground_speed_m_s(v0, pi, 0, radius, w), v0 + w * radius, 1e-9);
   // A latitude the track never reaches is refused.
   EXPECT_THROW(radchain::physics::rotating_earth_ground_speed_m_s(v0, 10 * pi / 180, 30 * pi / 180, radius, w), std::invalid_argument);
+}
+
+// The Sun's position for a dated scene (Spencer 1971; physics/solar_position.hpp) against independent values: the
+// Astronomical Almanac's declinations at the 2023 solstices and equinox (+23.44°, −23.44°, ≈0° within Spencer's
+// stated 0.0006 rad = 0.034° plus the day's own motion, ≤ 0.4° near the equinox), the perihelion/aphelion
+// distances 0.98329 / 1.01671 AU (the series meets them to 4e-4 AU, 0.08 % in irradiance: measured here, not
+// Spencer's own claim), and the zenith angle by spherical trigonometry.
+TEST(SolarPosition, DeclinationDistanceAndZenith) {
+  using radchain::physics::earth_sun_distance_au;
+  using radchain::physics::solar_declination_rad;
+  using radchain::physics::solar_zenith_rad;
+  EXPECT_NEAR(solar_declination_rad(172) / deg, 23.44, 0.05);   // 21 June
+  EXPECT_NEAR(solar_declination_rad(355) / deg, -23.44, 0.05);  // 21 December
+  EXPECT_NEAR(solar_declination_rad(80) / deg, 0.0, 0.5);       // 21 March (the equinox falls on day 79-80)
+  EXPECT_NEAR(earth_sun_distance_au(3), 0.98329, 5e-4);         // perihelion, ~3 January
+  EXPECT_NEAR(earth_sun_distance_au(185), 1.01671, 5e-4);       // aphelion, ~4 July
+  // At local noon the zenith angle is |φ − δ|; six hours from noon on an equinox (δ = 0) the Sun is on the horizon.
+  for (double lat : {-60.0, -10.0, 0.0, 23.44, 45.0, 70.0})
+    for (double dec : {-23.44, 0.0, 10.0, 23.44})
+      EXPECT_NEAR(solar_zenith_rad(lat * deg, dec * deg, 12 * 3600.0), std::abs(lat - dec) * deg, 1e-12) << lat << " " << dec;
+  EXPECT_NEAR(solar_zenith_rad(45 * deg, 0, 6 * 3600.0), pi / 2, 1e-12);
+  // Against the direction cosines: the Sun's unit vector (cos δ cos h, cos δ sin h, sin δ) dotted with the zenith
+  // (cos φ, 0, sin φ), at 10:30 local solar time.
+  const double lat = 38.5 * deg, dec = -12.0 * deg, h = -1.5 / 12 * pi;
+  EXPECT_NEAR(std::cos(solar_zenith_rad(lat, dec, 10.5 * 3600)),
+              std::cos(dec) * std::cos(h) * std::cos(lat) + std::sin(dec) * std::sin(lat), 1e-14);
 }
