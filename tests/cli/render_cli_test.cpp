@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <string>
 
 namespace {
@@ -44,11 +46,20 @@ TEST(RenderCli, DatasheetImagerRendersAndValidates) {
   EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
   EXPECT_NE(v.out.find("ok   flat field at the scene's reflectance"), std::string::npos) << v.out;
   EXPECT_NE(v.out.find("ok   edge MTF"), std::string::npos) << v.out;
-  // A binned detector is refused with its reason, not drawn as if native.
-  const CliResult b = run_cli(scratch, "render '" + s2 + "' --set detector.binning=2 --out " + (scratch / "b.fits").string());
-  EXPECT_EQ(b.exit_code, 2);
-  EXPECT_NE(b.err.find("binning 2 is not simulated"), std::string::npos) << b.err;
-  EXPECT_FALSE(fs::exists(scratch / "b.fits"));
+  // A binned, co-added detector is drawn as its native reads summed, and validates against its own chain.
+  const std::string binned = " --set detector.binning=2 --set detector.exposures=3";
+  const CliResult b = run_cli(scratch, "render '" + s2 + "'" + binned + " --out " + (scratch / "b.fits").string());
+  EXPECT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_NE(b.out.find("each output pixel sums 2×2 native pixels over 3 frames"), std::string::npos) << b.out;
+  const CliResult bv = run_cli(scratch, "validate '" + s2 + "'" + binned + " --size 128");
+  EXPECT_EQ(bv.exit_code, 0) << bv.out << bv.err;
+  EXPECT_NE(bv.out.find("ok   flat field at the scene's reflectance"), std::string::npos) << bv.out;
+  // More native reads than can be drawn: one located line, exit 2, nothing written.
+  const CliResult big = run_cli(scratch, "render '" + s2 + "' --set detector.exposures=100000 --out " + (scratch / "big.fits").string());
+  EXPECT_EQ(big.exit_code, 2);
+  EXPECT_NE(big.err.find("native reads"), std::string::npos) << big.err;
+  EXPECT_EQ(std::count(big.err.begin(), big.err.end(), '\n'), 1) << big.err;
+  EXPECT_FALSE(fs::exists(scratch / "big.fits"));
 }
 
 // Each bad option value: exit 2, nothing on stdout, exactly this one line on stderr.

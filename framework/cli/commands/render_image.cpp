@@ -110,12 +110,12 @@ RenderedImage render_earth(Chain& chain, const Report& report, const RenderReque
   o.quantisation = n.quantisation;
   Image map;
   if (c.scene.empty()) {
-    // The built-in scene at a quarter of the output sampling.
+    // The built-in scene at a quarter of the native sampling (of the output sampling without binning).
     o.input_sampling_m = 1.0;
-    const double gsd = earth_scene_setup(chain, report, o).output_sampling_m;
+    const EarthSceneSetup sampling = earth_scene_setup(chain, report, o);
     TestSceneOptions scene;
-    scene.sampling_m = v.maybe("--scene-sampling").value_or(gsd / 4.0);
-    scene.bar_unit_m = gsd;
+    scene.sampling_m = v.maybe("--scene-sampling").value_or(sampling.native_sampling_m() / 4.0);
+    scene.bar_unit_m = sampling.output_sampling_m;
     map = make_test_scene(scene);
     o.input_sampling_m = scene.sampling_m;
   } else {
@@ -139,11 +139,16 @@ RenderedImage render_earth(Chain& chain, const Report& report, const RenderReque
   out.summary.push_back(fmt::format("{}: Earth scene {}×{} at {:.4g} m → {}×{} at {:.4g} m (optics MTF {}, λ = {:.4g} um, N = {:.4g})",
                                     s.sensor_name, map.width, map.height, s.input_sampling_m, image.width, image.height,
                                     s.output_sampling_m, to_string(s.optics), s.wavelength_m * 1e6, s.f_number));
-  if (s.radiometry == EarthRadiometry::electrons)
+  if (s.radiometry == EarthRadiometry::electrons) {
     out.summary.push_back(fmt::format("  {:.5g} e- per unit reflectance + {:.4g} e- path radiance, dark {:.4g} e-, read {:.4g} e-, "
                                       "well {:.5g} e-, K {:.4g} DN/e-, SNR at ρ = {:.4g}: {:.4g}; {}",
                                       s.electrons_per_reflectance, s.path_electrons, s.dark_electrons, s.read_noise_e,
                                       s.capacity_e, s.gain_dn_per_e, s.scene_reflectance, s.snr, earth_unit(s)));
+    if (s.native_sums() > 1)
+      out.summary.push_back(fmt::format("  per native pixel and frame; each output pixel sums {}×{} native pixels over {} frame{} "
+                                        "({} reads)",
+                                        s.binning, s.binning, s.exposures, s.exposures == 1 ? "" : "s", s.native_sums()));
+  }
   else
     out.summary.push_back(fmt::format("  exposure per unit reflectance {:.4g} J m-2, NEE {:.4g} J m-2, SNR of Δρ = {:.4g}: {:.4g}; {}",
                                       s.exposure_per_reflectance(), s.nee_J_m2, s.reflectance_difference, s.snr, earth_unit(s)));

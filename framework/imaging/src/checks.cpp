@@ -219,9 +219,11 @@ FlatFieldCheck check_earth_flat_field(Chain& chain, const Report& report, EarthS
   const double q = s.exposure_per_dn();
   if (s.radiometry == EarthRadiometry::electrons) {
     // One flat field at the chain's own reflectance: its SNR is the chain's detector.snr (EMVA 1288 eq. 6, the
-    // dark level subtracted as EMVA's μ_e is).
+    // dark level subtracted as EMVA's μ_e is). An output pixel sums n = M b² native reads (binning, co-adds):
+    // temporal variances add n times, the fixed patterns (the same in every frame) M² b² times.
     const Image a = render_earth_scene(s, make_flat_scene(size, size, s.scene_reflectance), seed);
-    auto electrons = [&](float v) { return s.quantisation ? (v - s.offset_dn) * q : static_cast<double>(v); };
+    const double reads = s.native_sums(), frames = s.exposures, pixels = s.binning * s.binning;
+    auto electrons = [&](float v) { return s.quantisation ? (v - reads * s.offset_dn) * q : static_cast<double>(v); };
     Moments m;
     for (float v : a.pixels) m.add(electrons(v));
     const double photo = s.photo_electrons(s.scene_reflectance);
@@ -231,12 +233,13 @@ FlatFieldCheck check_earth_flat_field(Chain& chain, const Report& report, EarthS
     check.noise_unit = "e-";
     check.samples = m.n;
     check.measured_noise = std::sqrt(m.variance());
-    check.measured_snr = (m.mean() - dark) / check.measured_noise;
+    check.measured_snr = (m.mean() - reads * dark) / check.measured_noise;
     check.chain_snr = s.snr;
-    check.predicted_noise = std::sqrt((s.shot ? photo : 0.0) + dark + (s.read ? s.read_noise_e * s.read_noise_e : 0.0) +
-                                      (s.dark ? s.dsnu_e * s.dsnu_e : 0.0) + (s.shot ? s.prnu * s.prnu * photo * photo : 0.0) +
-                                      (s.quantisation ? q * q / 12.0 : 0.0));
-    check.predicted_snr = photo / check.predicted_noise;
+    const double temporal = (s.shot ? photo : 0.0) + dark + (s.read ? s.read_noise_e * s.read_noise_e : 0.0) +
+                            (s.quantisation ? q * q / 12.0 : 0.0);
+    const double fixed = (s.dark ? s.dsnu_e * s.dsnu_e : 0.0) + (s.shot ? s.prnu * s.prnu * photo * photo : 0.0);
+    check.predicted_noise = std::sqrt(reads * temporal + frames * frames * pixels * fixed);
+    check.predicted_snr = reads * photo / check.predicted_noise;
     // Error of mean/σ from n samples of a Gaussian: var ≈ (1 + SNR²/2) / n.
     check.snr_sigma = std::sqrt((1.0 + 0.5 * check.predicted_snr * check.predicted_snr) / static_cast<double>(check.samples));
     return check;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 namespace radchain::render {
 
@@ -70,7 +71,15 @@ double detector_otf_y(const EarthSceneSetup& s, double nu_focal) {
   return otf;
 }
 
-double sampling_ratio(const EarthSceneSetup& s) { return s.output_sampling_m / s.input_sampling_m; }
+// b native pixel apertures p apart summed into one binned pixel: their array factor sin(π b p ν)/(b sin(π p ν))
+// (the element's sinc is in detector_otf_*). Not applied to the native field: the binning sum does it.
+double binning_otf(const EarthSceneSetup& s, double nu_focal) {
+  const double a = std::numbers::pi * s.pitch_m * nu_focal;
+  return s.binning == 1 || std::abs(std::sin(a)) < 1e-12 ? 1.0 : std::sin(s.binning * a) / (s.binning * std::sin(a));
+}
+
+// Native samples per input pixel.
+double sampling_ratio(const EarthSceneSetup& s) { return s.native_sampling_m() / s.input_sampling_m; }
 
 }  // namespace
 
@@ -127,21 +136,27 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   s.integration_time_s = need(vocabulary::detector_integration_time);
   s.snr = need(vocabulary::detector_snr);
   if (electrons) {
-    // One native pixel, one frame: binned or co-added images are other images (a refusal, not an approximation).
-    if (const double b = result(report, vocabulary::detector_binning).value_or(1.0); b != 1.0)
-      refuse(file, std::string(vocabulary::detector_binning.name),
-             fmt::format("an Earth scene is drawn one native pixel per sample; binning {:g} is not simulated", b));
-    if (const double m = result(report, vocabulary::detector_exposures).value_or(1.0); m != 1.0)
-      refuse(file, std::string(vocabulary::detector_exposures.name),
-             fmt::format("an Earth scene is drawn as one frame; {:g} co-added exposures are not simulated", m));
+    // The chain counts an output pixel: b×b native pixels over M frames. The scene is drawn per native pixel and
+    // frame (render_earth_scene sums them), so the chain's per-pixel terms are taken back to one native pixel.
+    auto whole = [&](const Term& term, double lo, double hi) {
+      const double v = result(report, term).value_or(1.0);
+      if (!(v >= lo && v <= hi) || v != std::floor(v))
+        refuse(file, std::string(term.name), fmt::format("{:g} is not a whole number in [{:g}, {:g}]", v, lo, hi));
+      return static_cast<int>(v);
+    };
+    s.binning = whole(vocabulary::detector_binning, 1, 64);
+    s.exposures = whole(vocabulary::detector_exposures, 1, 1e6);
     s.scene_reflectance = need(vocabulary::target_reflectance);
     if (!(s.scene_reflectance > 0))
       refuse(file, std::string(vocabulary::target_reflectance.name), "the scene's reflectance must be > 0 to give electrons per reflectance");
-    s.path_electrons = result(report, vocabulary::detector_path_radiance_electrons).value_or(0.0);
-    s.electrons_per_reflectance = (need(vocabulary::detector_signal_electrons) - s.path_electrons) / s.scene_reflectance;
-    s.dark_electrons = need(vocabulary::detector_dark_rate) * s.integration_time_s *
+    const double reads = s.native_sums();
+    const double path = result(report, vocabulary::detector_path_radiance_electrons).value_or(0.0);
+    s.path_electrons = path / reads;
+    s.electrons_per_reflectance = (need(vocabulary::detector_signal_electrons) - path) / s.scene_reflectance / reads;
+    // detector.dark_rate is b² μ_I and detector.read_noise_per_pixel b σ_d per binned pixel (emva1288).
+    s.dark_electrons = need(vocabulary::detector_dark_rate) / (s.binning * s.binning) * s.integration_time_s *
                        result(report, vocabulary::detector_tdi_stages).value_or(1.0);
-    s.read_noise_e = need(vocabulary::detector_read_noise_per_pixel);
+    s.read_noise_e = need(vocabulary::detector_read_noise_per_pixel) / s.binning;
     s.prnu = result(report, vocabulary::detector_prnu).value_or(0.0);
     s.dsnu_e = result(report, vocabulary::detector_dsnu).value_or(0.0);
     s.gain_dn_per_e = need(vocabulary::detector_system_gain);
@@ -189,8 +204,11 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
 
   if (!(o.input_sampling_m > 0)) refuse(file, "input sampling", "give the ground size of one input pixel (> 0 m)");
   s.input_sampling_m = o.input_sampling_m;
-  // One output pixel per detector sample: the pixel-pitch GSD h p / f', else Kolobrodov's element V_s h / f'.
-  s.output_sampling_m = o.output_sampling_m ? *o.output_sampling_m : s.pixel_gsd_m > 0 ? s.pixel_gsd_m : s.ground_element_m;
+  // One output pixel per detector sample: the pixel-pitch GSD h p / f' (of a binned pixel: b h p / f'), else
+  // Kolobrodov's element V_s h / f'.
+  s.output_sampling_m = o.output_sampling_m ? *o.output_sampling_m
+                        : s.pixel_gsd_m > 0 ? s.binning * s.pixel_gsd_m
+                                            : s.ground_element_m;
   if (!(s.output_sampling_m > 0))
     refuse(file, "output sampling",
            "the sensor publishes neither criteria.<name>.gsd_nadir nor criteria.<name>.ground_element: give the output sampling");
@@ -217,13 +235,18 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
 double system_mtf(const EarthSceneSetup& s, double nu_x, double nu_y) {
   const double scale = 1.0 / s.ground_to_focal();  // ground cycles/m → focal-plane cycles/m: × h/f'
   const double fx = nu_x * scale, fy = nu_y * scale;
-  return std::abs(optics_otf(s, std::hypot(fx, fy)) * detector_otf_x(s, fx) * detector_otf_y(s, fy));
+  return std::abs(optics_otf(s, std::hypot(fx, fy)) * detector_otf_x(s, fx) * detector_otf_y(s, fy) * binning_otf(s, fx) *
+                  binning_otf(s, fy));
 }
 
-int earth_output_size(const EarthSceneSetup& s, int input_px) {
+namespace {
+int native_size(const EarthSceneSetup& s, int input_px) {
   if (input_px < 1) return 0;
   return static_cast<int>(std::floor((input_px - 1) / sampling_ratio(s) + 1e-9)) + 1;
 }
+}  // namespace
+
+int earth_output_size(const EarthSceneSetup& s, int input_px) { return native_size(s, input_px) / s.binning; }
 
 Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
   if (reflectance.empty()) throw std::invalid_argument("render: empty reflectance map");
@@ -282,7 +305,7 @@ Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
 
   // Point samples every r input pixels (exact for an integer r, else Keys' cubic).
   const double r = sampling_ratio(s);
-  const int wo = earth_output_size(s, reflectance.width), ho = earth_output_size(s, reflectance.height);
+  const int wo = native_size(s, reflectance.width), ho = native_size(s, reflectance.height);
   Image out(wo, ho);
   const auto ri = std::llround(r);
   auto at = [&](std::int64_t x, std::int64_t y) {
@@ -329,22 +352,44 @@ Image render_earth_scene(const EarthSceneSetup& s, const Image& reflectance, std
     }
     return image;
   }
-  // Electrons (EMVA 1288 eqs. 1-6, 18): the fixed pattern from its own stream, so that it is the same for one
-  // seed whatever the noise switches.
+  // Electrons (EMVA 1288 eqs. 1-6, 18), per native pixel and frame. The fixed pattern comes from its own stream,
+  // so that it is the same for one seed whatever the noise switches, and in every co-added frame.
+  const int b = s.binning, frames = s.exposures;
+  Image out(image.width / b, image.height / b);
+  const double draws = static_cast<double>(out.width) * out.height * s.native_sums();
+  if (draws > 4e9)
+    refuse(s.sensor_file, std::string(vocabulary::detector_exposures.name),
+           fmt::format("{}×{} pixels of {}×{} binned pixels over {} frames is {:.3g} native reads to draw (at most 4e9): "
+                       "render a smaller scene or fewer exposures",
+                       out.width, out.height, b, b, frames, draws));
   detail::Random pattern(seed ^ 0x9e3779b97f4a7c15ULL);
   const double dark = s.dark ? s.dark_electrons : 0.0;
-  for (float& v : image.pixels) {
+  // Per native pixel: the mean photo signal with its PRNU, and the dark level with its DSNU.
+  std::vector<double> photo(image.pixels.size()), level(image.pixels.size());
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     // PRNU goes with the shot noise (--no-noise shot), DSNU with the dark signal (--no-noise dark).
     const double g = pattern.normal(), d = pattern.normal();
-    const double gain_pattern = s.shot ? 1.0 + s.prnu * g : 1.0, offset_pattern = s.dsnu_e * d;
-    const double photo = std::max(0.0, s.photo_electrons(static_cast<double>(v)) * gain_pattern);
-    double e = photo + dark;
-    if (s.dark) e += offset_pattern;
-    const double variance = (s.shot ? photo : 0.0) + dark + (s.read ? s.read_noise_e * s.read_noise_e : 0.0);
-    if (variance > 0) e += std::sqrt(variance) * random.normal();
-    v = digitise(e, s.capacity_e);
+    const double gain_pattern = s.shot ? 1.0 + s.prnu * g : 1.0;
+    photo[i] = std::max(0.0, s.photo_electrons(static_cast<double>(image.pixels[i])) * gain_pattern);
+    level[i] = photo[i] + dark + (s.dark ? s.dsnu_e * d : 0.0);
   }
-  return image;
+  const double read_variance = s.read ? s.read_noise_e * s.read_noise_e : 0.0;
+  std::vector<double> sum(out.pixels.size(), 0.0);
+  for (int frame = 0; frame < frames; ++frame)
+    for (int y = 0; y < out.height; ++y)
+      for (int x = 0; x < out.width; ++x) {
+        double& total = sum[static_cast<std::size_t>(y) * out.width + x];
+        for (int v = 0; v < b; ++v)
+          for (int u = 0; u < b; ++u) {
+            const std::size_t i = static_cast<std::size_t>(y * b + v) * image.width + (x * b + u);
+            const double variance = (s.shot ? photo[i] : 0.0) + dark + read_variance;
+            double e = level[i];
+            if (variance > 0) e += std::sqrt(variance) * random.normal();
+            total += digitise(e, s.capacity_e);
+          }
+      }
+  for (std::size_t i = 0; i < sum.size(); ++i) out.pixels[i] = static_cast<float>(sum[i]);
+  return out;
 }
 
 std::string earth_unit(const EarthSceneSetup& s) {
@@ -390,10 +435,12 @@ Header earth_scene_header(const EarthSceneSetup& s, std::uint64_t seed) {
   if (s.pixel_gsd_m > 0) number("PIXGSD", s.pixel_gsd_m, "[m] pixel-pitch GSD h p / f'");
   if (s.ground_element_m > 0) number("GRNDELEM", s.ground_element_m, "[m] designed ground element");
   if (electrons) {
-    number("EPERRHO", s.electrons_per_reflectance, "[e-] electrons per unit reflectance");
-    number("PATHE", s.path_electrons, "[e-] path radiance electrons");
-    number("DARKE", s.dark_electrons, "[e-] dark electrons per line");
-    number("READNOIS", s.read_noise_e, "[e-] read noise per pixel");
+    number("EPERRHO", s.electrons_per_reflectance, "[e-] per unit reflectance, native pixel and frame");
+    number("PATHE", s.path_electrons, "[e-] path radiance, native pixel and frame");
+    number("DARKE", s.dark_electrons, "[e-] dark electrons per native pixel and frame");
+    number("READNOIS", s.read_noise_e, "[e-] read noise per native pixel");
+    h.push_back({"BINNING", static_cast<std::int64_t>(s.binning), "native pixels summed per side"});
+    h.push_back({"NCOADD", static_cast<std::int64_t>(s.exposures), "frames co-added"});
     number("PRNU", s.prnu, "photo-response non-uniformity s_g");
     number("DSNU", s.dsnu_e, "[e-] dark-signal non-uniformity");
     number("GAIN", s.gain_dn_per_e, "[adu/e-] system gain K");

@@ -32,6 +32,12 @@
 //      (G, D ~ N(0, 1) fixed per pixel and seed: PRNU and DSNU; Z temporal; μ_d = dark rate × N_tdi t), is
 //      clipped at detector.saturation_capacity and read as DN = clamp(floor(K e + ½) + offset, 0, 2^bits − 1)
 //      with the detector's K and bits; so a flat field at the chain's reflectance has the chain's detector.snr.
+//      Binned (b×b, detector.binning) and co-added (M frames, detector.exposures) detectors: steps 1-3 give the
+//      native pixels (one native sample = output sample / b), each of the M frames draws every native pixel as
+//      above (its own well and ADC; the fixed pattern the same in every frame) and an output pixel is the sum of
+//      its b×b native pixels over the M frames, digital binning and co-adding as the detector's noise model
+//      counts them (EMVA 1288 eqs. 5, 6, 18 over b² pixels and M frames); the sum of b shifted pixel apertures
+//      gives the binned pixel's MTF sinc(p ν) sin(π b p ν)/(b sin(π p ν)) per axis.
 // Without the ADC the image is the exposure in J m-2 or the charge in electrons (float).
 #include "radchain/chain.hpp"
 #include "radchain/imaging/image.hpp"
@@ -78,8 +84,9 @@ struct EarthSceneSetup {
   bool detector_mtf = true;
   double input_sampling_m = 0, output_sampling_m = 0;
   EarthRadiometry radiometry = EarthRadiometry::exposure;
-  // electron radiometry (one native pixel, one frame)
+  // electron radiometry (one native pixel, one frame; an output pixel sums binning² of them over `exposures` frames)
   double electrons_per_reflectance = 0, path_electrons = 0, dark_electrons = 0, read_noise_e = 0;
+  int binning = 1, exposures = 1;
   double prnu = 0, dsnu_e = 0, gain_dn_per_e = 0, capacity_e = 0, scene_reflectance = 0;
   bool shot = true, dark = true, read = true;
   double irradiance_per_reflectance_W_m2 = 0;  // K
@@ -97,6 +104,8 @@ struct EarthSceneSetup {
   // Mean photo signal (electrons) of a pixel of reflectance ρ: ρ k_ρ + S_path.
   double photo_electrons(double rho) const { return rho * electrons_per_reflectance + path_electrons; }
   double ground_to_focal() const { return focal_length_m / altitude_m; }  // focal-plane length per ground length
+  double native_sampling_m() const { return output_sampling_m / binning; }  // one native pixel on the ground
+  double native_sums() const { return static_cast<double>(exposures) * binning * binning; }  // M b² reads per output pixel
 };
 
 // Throws InputError when the chain is not a pushbroom design (names the missing result) or the options are bad.
@@ -106,12 +115,13 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
 // product in step 2 above, as a modulus.
 double system_mtf(const EarthSceneSetup& setup, double nu_x_per_m, double nu_y_per_m);
 
-// Output size for an input of `input_px` pixels: floor((input_px − 1) / r) + 1, r = output/input sampling.
+// Output size for an input of `input_px` pixels: native samples floor((input_px − 1) / r) + 1 (r = native/input
+// sampling), then floor(native / b) binned pixels.
 int earth_output_size(const EarthSceneSetup& setup, int input_px);
 
 // The simulated image of a reflectance map (DN, or exposure in J m-2 without the ADC). Same seed, same image.
 Image render_earth_scene(const EarthSceneSetup& setup, const Image& reflectance, std::uint64_t seed);
-// Steps 1-3 only: the filtered reflectance at the output samples (no radiometry, no noise).
+// Steps 1-3 only: the filtered reflectance at the native samples (no radiometry, no noise, not binned).
 Image filtered_reflectance(const EarthSceneSetup& setup, const Image& reflectance);
 // "adu" with the ADC, else "J m-2" (exposure) or "electron".
 std::string earth_unit(const EarthSceneSetup& setup);
