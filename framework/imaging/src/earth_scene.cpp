@@ -55,7 +55,7 @@ double optics_otf(const EarthSceneSetup& s, double nu_focal) {
 }
 
 // Across track (x): the element aperture. Along track (y): also the budget's linear smear and TDI
-// synchronisation, signed (the OTF of a box and of N shifted copies; physics/mtf.hpp gives their moduli).
+// synchronisation, signed (the OTF of a box and of N shifted copies: physics::sinc_pi, shifted_copies_otf).
 double detector_otf_x(const EarthSceneSetup& s, double nu_focal) {
   return s.detector_mtf ? physics::sinc_pi(s.element_m * nu_focal) : 1.0;
 }
@@ -64,9 +64,7 @@ double detector_otf_y(const EarthSceneSetup& s, double nu_focal) {
   double otf = detector_otf_x(s, nu_focal);
   if (s.optics == OpticsMtf::budget) {
     const physics::MtfBudget& b = s.budget;
-    otf *= physics::sinc_pi(b.smear_m * nu_focal);
-    const double a = std::numbers::pi * b.tdi_mismatch * b.pitch_m * nu_focal;
-    if (std::abs(std::sin(a)) >= 1e-12) otf *= std::sin(b.tdi_stages * a) / (b.tdi_stages * std::sin(a));
+    otf *= physics::sinc_pi(b.smear_m * nu_focal) * physics::shifted_copies_otf(nu_focal, b.tdi_stages, b.tdi_mismatch * b.pitch_m);
   }
   return otf;
 }
@@ -74,8 +72,7 @@ double detector_otf_y(const EarthSceneSetup& s, double nu_focal) {
 // b native pixel apertures p apart summed into one binned pixel: their array factor sin(π b p ν)/(b sin(π p ν))
 // (the element's sinc is in detector_otf_*). Not applied to the native field: the binning sum does it.
 double binning_otf(const EarthSceneSetup& s, double nu_focal) {
-  const double a = std::numbers::pi * s.pitch_m * nu_focal;
-  return s.binning == 1 || std::abs(std::sin(a)) < 1e-12 ? 1.0 : std::sin(s.binning * a) / (s.binning * std::sin(a));
+  return physics::shifted_copies_otf(nu_focal, s.binning, s.pitch_m);
 }
 
 // Native samples per input pixel.
@@ -194,13 +191,14 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
 
   if (electrons) {
     if (o.saturation_exposure_J_m2) refuse(file, "saturation exposure", "a datasheet detector saturates at its detector.saturation_capacity");
-  } else if (o.saturation_exposure_J_m2) s.saturation_J_m2 = *o.saturation_exposure_J_m2;
-  else if (auto h = result(report, vocabulary::detector_saturation_exposure))
-    s.saturation_J_m2 = *h * result(report, vocabulary::detector_utilisation_ratio).value_or(1.0);  // H_m k_i/k_c, as H_nr
-  if (electrons) {
-  } else if (auto rho = result(report, vocabulary::target_background_reflectance)) s.background_reflectance = *rho;
-  else if (auto m = result(report, vocabulary::target_background_exitance), e = result(report, vocabulary::atmosphere_ground_irradiance); m && e && *e > 0)
-    s.background_reflectance = *m / *e;
+  } else {
+    if (o.saturation_exposure_J_m2) s.saturation_J_m2 = *o.saturation_exposure_J_m2;
+    else if (auto h = result(report, vocabulary::detector_saturation_exposure))
+      s.saturation_J_m2 = *h * result(report, vocabulary::detector_utilisation_ratio).value_or(1.0);  // H_m k_i/k_c, as H_nr
+    if (auto rho = result(report, vocabulary::target_background_reflectance)) s.background_reflectance = *rho;
+    else if (auto m = result(report, vocabulary::target_background_exitance), e = result(report, vocabulary::atmosphere_ground_irradiance); m && e && *e > 0)
+      s.background_reflectance = *m / *e;
+  }
 
   if (!(o.input_sampling_m > 0)) refuse(file, "input sampling", "give the ground size of one input pixel (> 0 m)");
   s.input_sampling_m = o.input_sampling_m;

@@ -50,6 +50,20 @@ TEST(MtfBudget, TdiSynchronisationIsADirichletKernel) {
   EXPECT_NEAR(tdi_synchronisation_mtf(nyq, 64, 0.01, p), linear_smear_mtf(nyq, 0.64 * p), 1e-4);
 }
 
+TEST(MtfBudget, ShiftedCopiesKeepTheirSign) {
+  // N copies δ apart, summed directly as Σ_k exp(−2πiν(k − (N−1)/2)δ)/N (real for centred copies): the signed
+  // kernel, negative past its first zero at ν = 1/(Nδ), e.g. 3×3 binning at 0.5/p.
+  const double p = 10 * um;
+  for (const int copies : {2, 3, 4, 7})
+    for (const double nu : {0.1 / p, 0.3 / p, 0.45 / p, 0.9 / p}) {
+      double sum = 0;
+      for (int k = 0; k < copies; ++k) sum += std::cos(2 * pi * nu * (k - 0.5 * (copies - 1)) * p);
+      EXPECT_NEAR(shifted_copies_otf(nu, copies, p), sum / copies, 1e-12) << copies << " copies at " << nu * p << "/p";
+    }
+  EXPECT_LT(shifted_copies_otf(0.5 / p, 3, p), 0.0);
+  EXPECT_DOUBLE_EQ(shifted_copies_otf(1.0 / p, 3, p), 1.0);  // sin(π δ ν) = 0: every copy in phase
+}
+
 TEST(EdgeResponse, GaussianMtfGivesTheErrorFunctionEdge) {
   // MTF exp(−2π²σ²u²) is a Gaussian LSF of rms σ samples: ER(x) = Φ(x/σ), RER = 2Φ(½σ⁻¹) − 1, monotonic, so
   // H = ER(1.25).

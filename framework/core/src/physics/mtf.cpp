@@ -208,9 +208,13 @@ double wavefront_error_mtf(double frequency_per_m, double wavelength_m, double f
 double tdi_synchronisation_mtf(double frequency_per_m, double stages, double mismatch_fraction, double pixel_pitch_m) {
   // N is a count; a real N > 0 is accepted so that a sweep or solve may pass through it smoothly.
   if (!(stages > 0)) throw std::invalid_argument("TDI: the number of stages must be positive, got " + std::to_string(stages));
-  const double a = pi * mismatch_fraction * pixel_pitch_m * frequency_per_m;
+  return std::abs(shifted_copies_otf(frequency_per_m, stages, mismatch_fraction * pixel_pitch_m));
+}
+
+double shifted_copies_otf(double frequency_per_m, double copies, double shift_m) {
+  const double a = pi * shift_m * frequency_per_m;
   if (std::abs(std::sin(a)) < 1e-12) return 1.0;
-  return std::abs(std::sin(stages * a) / (stages * std::sin(a)));
+  return std::sin(copies * a) / (copies * std::sin(a));
 }
 
 double nyquist_frequency_per_m(double pixel_pitch_m) {

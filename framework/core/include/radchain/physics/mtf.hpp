@@ -114,6 +114,10 @@ double wavefront_error_mtf(double frequency_per_m, double wavelength_m, double f
 // δ = mismatch·p (a Dirichlet kernel; H.-S. Wong, Y. L. Yao, E. S. Schlig, "TDI charge-coupled devices: design
 // and applications", IBM J. Res. Dev. 36 (1992) 83; → |sinc(π N δ ν)| for small δ).
 double tdi_synchronisation_mtf(double frequency_per_m, double stages, double mismatch_fraction, double pixel_pitch_m);
+// The signed OTF of N equal copies of an image shifted by δ each (centred): sin(π N δ ν)/(N sin(π δ ν)), the
+// Dirichlet kernel behind TDI synchronisation (δ = mismatch·p, above) and b×b binning (N = b, δ = p; Holst 2008
+// ch. 10, sampled-data systems). 1 where sin(π δ ν) = 0. Signed, for images that keep contrast reversal.
+double shifted_copies_otf(double frequency_per_m, double copies, double shift_m);
 // Nyquist frequency of a pixel pitch p: 1/(2p).
 double nyquist_frequency_per_m(double pixel_pitch_m);
 
