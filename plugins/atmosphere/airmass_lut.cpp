@@ -5,6 +5,11 @@
 // the Bouguer-Lambert-Beer law holds (ln τ = −X κ), and closer than Beer's τ₁^X where it does not (saturated
 // molecular bands, multiple scattering: the reason RT codes are run per airmass). The path radiance is
 // interpolated linearly. No extrapolation: an airmass outside the nodes is refused.
+// Two paths, two airmasses: the line of sight (`airmass`: the up path, and the path radiance seen along it) and,
+// optionally, the Sun's path to the ground (`sun_airmass`, the down path; plane-parallel X = sec θ_s for a Sun at
+// zenith angle θ_s). An Earth scene under a low Sun seen at nadir crosses the atmosphere at X_s ≠ X_v
+// (L = τ(X_v) ρ E cos θ_s τ(X_s)/π + L_path(X_v); Schott 2007 §4.1). The path radiance tables are then runs at the
+// scene's sun angle, one per view airmass.
 #include "radchain/curve_components.hpp"
 #include "radchain/plugin.hpp"
 #include "radchain/spectrum_csv.hpp"
@@ -12,6 +17,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <utility>
 
 namespace {
 using namespace radchain;
@@ -24,6 +30,8 @@ const Schema& schema() {
           .described("the node airmasses of the tables, increasing (e.g. [1.0, 1.5, 2.0, 2.5])"),
       number("airmass", "1.3").needed().at_least(1).affects_spectrum()
           .described("the line of sight's airmass X, within the nodes (interpolated, never extrapolated)"),
+      number("sun_airmass", "2.0").at_least(1).affects_spectrum()
+          .described("the Sun's path to the ground (down path), within the nodes; default: the line of sight's"),
       spectrum_file("path_radiance_tables", "W m-2 sr-1 m-1", "path_radiance_X10.csv").as_list()
           .described("path radiance at the sensor at each node (optional; same count and order as the tables)"),
       flag("down_path").fallback("true")
@@ -44,36 +52,59 @@ class AirmassLut final : public Stage {
       if (!(nodes[i] > nodes[i - 1])) p.reject("airmasses", "the node airmasses must increase");
     if (p.has("path_radiance_tables") && p.entry("path_radiance_tables").texts.size() != tables.size())
       p.reject("path_radiance_tables", "give one path radiance table per transmittance table");
-    const double x = p.get("airmass");
-    if (x < nodes.front() || x > nodes.back())
-      p.reject("airmass", fmt::format("{:g} is outside the table's nodes [{:g}, {:g}] (no extrapolation)", x, nodes.front(), nodes.back()));
+    for (const char* key : {"airmass", "sun_airmass"}) {
+      if (!p.has(key)) continue;
+      const double x = p.get(key);
+      if (x < nodes.front() || x > nodes.back())
+        p.reject(key, fmt::format("{:g} is outside the table's nodes [{:g}, {:g}] (no extrapolation)", x, nodes.front(), nodes.back()));
+    }
+    if (p.has("sun_airmass") && !p.flag("down_path"))
+      p.reject("sun_airmass", "down_path = false: the source's light does not cross this atmosphere");
   }
 
-  void prepare(Context& c) override {
-    const std::vector<std::string>& tables = params_.entry("tables").texts;
+  // The node interval [X_i, X_(i+1)] of an airmass and the weight w in it.
+  std::pair<std::size_t, double> bracket(double x) const {
     const std::vector<double>& nodes = params_.entry("airmasses").numbers;
-    const double x = params_.get("airmass");
     std::size_t i = 0;
     while (i + 2 < nodes.size() && x > nodes[i + 1]) ++i;
-    const double w = (x - nodes[i]) / (nodes[i + 1] - nodes[i]);
-    // On the lower node's grid (the tables of one RT run share theirs).
+    return {i, (x - nodes[i]) / (nodes[i + 1] - nodes[i])};
+  }
+
+  // τ(λ) at airmass x: τ_i^(1−w) τ_(i+1)^w on the lower node's grid (the tables of one RT run share theirs).
+  Spectrum transmittance_at(double x) const {
+    const std::vector<std::string>& tables = params_.entry("tables").texts;
+    const auto [i, w] = bracket(x);
     const Spectrum& below = cached_spectrum_csv(tables[i], "1").spectrum;
     const Spectrum& above = cached_spectrum_csv(tables[i + 1], "1").spectrum;
     const Eigen::ArrayXd& grid = below.wavelength_m();
     const Eigen::ArrayXd tau_below = below.value().max(0.0), tau_above = above(grid).max(0.0);
     const Eigen::ArrayXd tau = (tau_below > 0 && tau_above > 0).select(tau_below.pow(1 - w) * tau_above.pow(w), 0.0);
-    const Spectrum path(grid, tau, "1", Extrapolation::zero);
-    if (params_.flag("down_path")) c.light.illumination = c.light.illumination.product(path, c.light.illumination.unit());
-    c.light.up_path_transmittance =
-        c.light.up_path_transmittance.empty() ? path : c.light.up_path_transmittance.product(path, "1");
+    return Spectrum(grid, tau, "1", Extrapolation::zero);
+  }
+
+  void prepare(Context& c) override {
+    const std::vector<double>& nodes = params_.entry("airmasses").numbers;
+    const double x = params_.get("airmass");
+    const auto [i, w] = bracket(x);
+    const Spectrum path = transmittance_at(x);
     const double lo = c.light.has_report_band() ? c.light.report_band_min_m : 400e-9;
     const double hi = c.light.has_report_band() ? c.light.report_band_max_m : 700e-9;
+    if (params_.flag("down_path")) {
+      const Spectrum sun_path = params_.has("sun_airmass") ? transmittance_at(params_.get("sun_airmass")) : path;
+      c.light.illumination = c.light.illumination.product(sun_path, c.light.illumination.unit());
+      sun_tau_ = sun_path.integral(lo, hi) / (hi - lo);
+      id_sun_tau_ = c.declare("sun_transmittance", "1", "band mean of τ at the Sun's airmass (the down path)");
+      id_sun_airmass_ = c.declare("sun_airmass", "1", params_.has("sun_airmass") ? "input X_s" : "X_s = X (no sun_airmass given)");
+    }
+    c.light.up_path_transmittance =
+        c.light.up_path_transmittance.empty() ? path : c.light.up_path_transmittance.product(path, "1");
     mean_tau_ = path.integral(lo, hi) / (hi - lo);
-    id_tau_ = c.declare("transmittance", "1", "band mean of τ_i^(1−w) τ_{i+1}^w over the reporting band (or 400-700 nm)");
+    id_tau_ = c.declare("transmittance", "1", "band mean of τ_i^(1−w) τ_{i+1}^w along the line of sight over the reporting band (or 400-700 nm)");
     id_airmass_ = c.declare(vocabulary::atmosphere_airmass, "input X (between the LUT's nodes)");
     id_weight_ = c.declare("lut_weight", "1", fmt::format("w = (X − X_i)/(X_(i+1) − X_i) between the nodes {:g} and {:g}",
                                                           nodes[i], nodes[i + 1]));
     if (params_.has("path_radiance_tables")) {
+      // Along the line of sight: the tables' node airmasses are view airmasses.
       const std::vector<std::string>& paths = params_.entry("path_radiance_tables").texts;
       const Spectrum& l_below = cached_spectrum_csv(paths[i], "W m-2 sr-1 m-1").spectrum;
       const Spectrum& l_above = cached_spectrum_csv(paths[i + 1], "W m-2 sr-1 m-1").spectrum;
@@ -90,13 +121,17 @@ class AirmassLut final : public Stage {
     c.results.set(id_airmass_, params_.get("airmass"));
     c.results.set(id_weight_, weight_);
     if (id_path_) c.results.set(*id_path_, path_in_band_);
+    if (id_sun_tau_) {
+      c.results.set(*id_sun_tau_, sun_tau_);
+      c.results.set(*id_sun_airmass_, params_.has("sun_airmass") ? params_.get("sun_airmass") : params_.get("airmass"));
+    }
   }
 
  private:
   const Params& params_;
-  double mean_tau_ = 1, path_in_band_ = 0, weight_ = 0;
+  double mean_tau_ = 1, path_in_band_ = 0, weight_ = 0, sun_tau_ = 1;
   ResultId id_tau_{}, id_airmass_{}, id_weight_{};
-  std::optional<ResultId> id_path_;
+  std::optional<ResultId> id_path_, id_sun_tau_, id_sun_airmass_;
 };
 
 }  // namespace

@@ -138,6 +138,26 @@ TEST(AirmassLut, PathRadianceIsInterpolatedLinearly) {
   EXPECT_GT(v(r, "detector.path_radiance_electrons"), 0.0);
 }
 
+// A low Sun over a nadir view: the down path at X_s, the line of sight at X_v. The Sun's band mean is its node's
+// table; the scene's light crosses τ(X_s) τ(X_v), so swapping the two airmasses gives the same signal, which lies
+// between the one-airmass scenes at either value; without sun_airmass both paths take the line of sight's.
+TEST(AirmassLut, TheSunsPathAndTheLineOfSightHaveTheirOwnAirmasses) {
+  const std::string x20 = "lsst_atmos_aerosol_X20_throughputs1.9.csv";
+  const Report split = run("airmass = 1.0\nsun_airmass = 2.0");
+  EXPECT_NEAR(v(split, "atmosphere.sun_transmittance"), band_mean(x20, x20, [](double a, double) { return a; }), 1e-9);
+  EXPECT_NEAR(v(split, "atmosphere.transmittance"), band_mean(x10, x10, [](double a, double) { return a; }), 1e-9);
+  EXPECT_EQ(v(split, "atmosphere.sun_airmass"), 2.0);
+  EXPECT_EQ(v(split, "atmosphere.airmass"), 1.0);
+  const double s12 = v(split, "detector.signal_electrons");
+  const double s21 = v(run("airmass = 2.0\nsun_airmass = 1.0"), "detector.signal_electrons");
+  EXPECT_NEAR(s12, s21, 1e-12 * s12);
+  EXPECT_LT(s12, v(run("airmass = 1.0"), "detector.signal_electrons"));
+  EXPECT_GT(s12, v(run("airmass = 2.0"), "detector.signal_electrons"));
+  const Report same = run("airmass = 1.25");
+  EXPECT_EQ(v(same, "atmosphere.sun_airmass"), 1.25);
+  EXPECT_EQ(v(same, "detector.signal_electrons"), v(run("airmass = 1.25\nsun_airmass = 1.25"), "detector.signal_electrons"));
+}
+
 TEST(AirmassLut, BadTablesAreRefusedAtTheirKeys) {
   auto error_of = [](const std::string& text) {
     try {
@@ -148,6 +168,10 @@ TEST(AirmassLut, BadTablesAreRefusedAtTheirKeys) {
     return std::string("(no error)");
   };
   EXPECT_NE(error_of(sensor("airmass = 3")).find("airmass = 3: 3 is outside the table's nodes [1, 2.5] (no extrapolation)"),
+            std::string::npos);
+  EXPECT_NE(error_of(sensor("airmass = 1\nsun_airmass = 2.6")).find("sun_airmass = 2.6: 2.6 is outside the table's nodes"),
+            std::string::npos);
+  EXPECT_NE(error_of(sensor("airmass = 1\nsun_airmass = 2\ndown_path = false")).find("sun_airmass = 2: down_path = false"),
             std::string::npos);
   std::string text = sensor("airmass = 1.2");
   text.replace(text.find("[1.0, 1.5, 2.0, 2.5]"), 20, "[1.0, 1.5, 2.0]");
