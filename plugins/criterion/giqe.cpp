@@ -1,10 +1,14 @@
 // Image-quality requirement as a NIIRS from the General Image Quality Equation (GIQE-5, NGA 2015; GIQE-4,
 // Leachtenauer et al. 1997 as an option), evaluated from
-//   GSD  the geometric mean of the across- and along-track pixel-pitch GSDs at the platform's look (spherical Earth),
-//   RER  the relative edge response of the system MTF: diffraction of the (obscured) pupil at `wavelength` × the
-//        pixel aperture × jitter × linear smear × diffusion × wavefront error × TDI synchronisation
-//        (physics/mtf.hpp), the edge integrated from the MTF (physics/giqe.hpp) — or a measured `rer`,
-//   H    the edge overshoot of the same edge (GIQE-4 only),
+//   GSD  GIQE-5: the weighted GSD of NGA eq. (5), GSD_NP / sin(elevation)^¼ with GSD_NP = p R / f' at the look's
+//        slant range R and the target's elevation (spherical Earth); GIQE-4: the ground-plane GSD, the geometric
+//        mean of the across- and along-track pixel-pitch GSDs (Leachtenauer 1997),
+//   RER  the relative edge response of the system MTF in each direction: across track diffraction of the
+//        (obscured) pupil at `wavelength` × the pixel aperture × jitter × diffusion × wavefront error; along
+//        track also × linear smear × TDI synchronisation (physics/mtf.hpp); the edge integrated from the MTF
+//        (physics/giqe.hpp). GIQE-5 takes the weighted RER of NGA eq. (7), (RER_cs RER_as²)^⅓; GIQE-4 the
+//        geometric mean — or a measured `rer` in the equation's own definition,
+//   H    the geometric mean of the two directions' edge overshoots (GIQE-4 only),
 //   SNR  the detector's detector.snr, or `snr` given here.
 //   margin = NIIRS / NIIRS_required − 1   (≥ 0 passes)
 // A [[solve]] on optics.aperture (the diffraction MTF, hence RER) or platform.altitude (GSD) finds the design for a
@@ -17,6 +21,7 @@
 #include "radchain/plugin.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace {
 using namespace radchain;
@@ -61,18 +66,29 @@ class Giqe final : public Stage {
     detector_snr_ = params_.has("snr") ? std::nullopt : c.find(vocabulary::detector_snr);
     if (!params_.has("snr") && !detector_snr_)
       params_.reject("snr", "no SNR: give snr here, or use a detector that publishes detector.snr");
-    id_gsd_ = c.declare("gsd_geometric_mean", "m", "√(GSD_across · GSD_along) at the look, spherical Earth", "m");
-    id_gsd_inch_ = c.declare("gsd_inches", "1", "GSD / 0.0254 m (the GIQE's unit)");
-    id_rer_ = c.declare(vocabulary::criterion_rer, params_.has("rer") ? "input (measured)" : "ER(½) − ER(−½) of the system MTF");
-    // The overshoot costs ~40 edge integrals: only GIQE-4 uses it.
-    if (giqe4_) id_overshoot_ = c.declare("overshoot", "1", "max ER on [1, 3] samples, or ER(1.25) if monotonic (GIQE-4's H)");
+    id_gsd_ = c.declare("gsd_geometric_mean", "m", "√(GSD_across · GSD_along) at the look, spherical Earth: the ground-plane GSD", "m");
+    id_gsd_normal_ = c.declare("gsd_normal_plane", "m", "p R / f': the pixel on the plane normal to the line of sight", "m");
+    id_elevation_ = c.declare("target_elevation", "rad", "90° − the view zenith angle at the ground point", "deg");
+    id_gsd_inch_ = c.declare("gsd_inches", "1",
+                             giqe4_ ? "the ground-plane GSD / 0.0254 m (GIQE-4)"
+                                    : "GSD_W / 0.0254 m, GSD_W = GSD_NP / sin(elevation)^¼ (NGA GIQE v5.0 eq. 5)");
+    id_rer_ = c.declare(vocabulary::criterion_rer,
+                        params_.has("rer") ? "input (measured)"
+                        : giqe4_           ? "√(RER_across · RER_along) (GIQE-4's geometric mean)"
+                                           : "(RER_cs RER_as²)^⅓, the lesser twice (NGA GIQE v5.0 eq. 7)");
+    if (!params_.has("rer")) {
+      id_rer_across_ = c.declare("rer_across_track", "1", "ER(½) − ER(−½) of the MTF across track (no smear, no TDI)");
+      id_rer_along_ = c.declare("rer_along_track", "1", "ER(½) − ER(−½) of the MTF along track (smear and TDI included)");
+    }
+    // The overshoot costs ~40 edge integrals per direction: only GIQE-4 uses it.
+    if (giqe4_) id_overshoot_ = c.declare("overshoot", "1", "√(H_across · H_along); H = max ER on [1, 3] samples, or ER(1.25) if monotonic");
     id_snr_ = c.declare("snr", "1", params_.has("snr") ? "input" : "= detector.snr");
     id_niirs_ = c.declare(vocabulary::criterion_niirs,
                           giqe4_ ? "GIQE-4, Leachtenauer et al. 1997 eq. (2)" : "GIQE-5, NGA GIQE v5.0 (2015)");
     id_required_ = c.declare("required_niirs", "1", "input");
     id_margin_ = c.declare(vocabulary::criterion_margin, "NIIRS / NIIRS_required − 1");
     id_nyquist_ = c.declare("nyquist_frequency", "m-1", "1/(2p)", "mm-1");
-    id_mtf_system_ = c.declare("mtf_nyquist_system", "1", "product of the components at Nyquist");
+    id_mtf_system_ = c.declare("mtf_nyquist_system", "1", "product of the components at Nyquist (along track)");
     id_mtf_diffraction_ = c.declare("mtf_nyquist_diffraction", "1", "annular pupil (O'Neill 1956) at Nyquist");
     id_mtf_pixel_ = c.declare("mtf_nyquist_pixel", "1", "|sinc(π p ν)| at Nyquist = 2/π");
     id_mtf_other_ = c.declare("mtf_nyquist_other", "1", "jitter × smear × diffusion × wavefront × TDI at Nyquist");
@@ -93,24 +109,46 @@ class Giqe final : public Stage {
     const double h = look.altitude_m, p = look.pixel_pitch_m, r = look.earth_radius_m;
     const double roll = look.roll_rad, pitch = look.pitch_rad;
     const double ifov = p / look.focal_length_m;
-    const double gsd = std::sqrt(physics::gsd_across_track_m(h, roll, pitch, ifov, r) *
-                                 physics::gsd_along_track_m(h, roll, pitch, ifov, r));
+    const double gsd_ground = std::sqrt(physics::gsd_across_track_m(h, roll, pitch, ifov, r) *
+                                        physics::gsd_along_track_m(h, roll, pitch, ifov, r));
+    const double off_nadir = physics::off_nadir_angle_rad(roll, pitch);
+    const double gsd_normal = ifov * physics::slant_range_m(h, off_nadir, r);
+    const double elevation = std::numbers::pi / 2 - physics::view_zenith_angle_rad(h, off_nadir, r);
+    const double gsd = giqe4_ ? gsd_ground : physics::giqe5_weighted_gsd_m(gsd_normal, elevation);
     const double n = c.results.value(f_number_), lambda = *wavelength_;
     const double eps = obscuration_ ? c.results.value(*obscuration_) : 0.0;
     const physics::MtfBudget budget{lambda, n, eps, p, *jitter_, *smear_ * p, *diffusion_, *wfe_, *tdi_stages_, *tdi_mismatch_};
+    physics::MtfBudget across_budget = budget;  // smear and TDI synchronisation act along track only
+    across_budget.smear_m = 0;
+    across_budget.tdi_stages = 1;
+    across_budget.tdi_mismatch = 0;
     // The MTF in cycles per sample u (ν = u/p).
     auto system = [&](double u) { return physics::mtf_components(budget, u / p).system(); };
+    auto across = [&](double u) { return physics::mtf_components(across_budget, u / p).system(); };
     const double cutoff_samples = p * physics::diffraction_cutoff_frequency_per_m(lambda, n);
     constexpr int panels = 1000;
-    const double rer = params_.has("rer") ? *rer_ : physics::relative_edge_response(system, cutoff_samples, panels);
-    const double overshoot = giqe4_ ? physics::edge_overshoot(system, cutoff_samples, panels) : 0.0;
+    double rer = params_.has("rer") ? *rer_ : 0.0, rer_across = 0, rer_along = 0;
+    if (!params_.has("rer")) {
+      rer_across = physics::relative_edge_response(across, cutoff_samples, panels);
+      rer_along = physics::relative_edge_response(system, cutoff_samples, panels);
+      rer = giqe4_ ? std::sqrt(rer_across * rer_along) : physics::giqe5_weighted_rer(rer_across, rer_along);
+    }
+    const double overshoot = giqe4_ ? std::sqrt(physics::edge_overshoot(across, cutoff_samples, panels) *
+                                                physics::edge_overshoot(system, cutoff_samples, panels))
+                                    : 0.0;
     const double snr = params_.has("snr") ? *snr_ : c.results.value(*detector_snr_);
     const double niirs = giqe4_ ? physics::giqe4_niirs(gsd, rer, overshoot, *noise_gain_, snr)
                                 : physics::giqe5_niirs(gsd, rer, snr);
     const double nyquist = physics::nyquist_frequency_per_m(p);
-    c.results.set(id_gsd_, gsd);
+    c.results.set(id_gsd_, gsd_ground);
+    c.results.set(id_gsd_normal_, gsd_normal);
+    c.results.set(id_elevation_, elevation);
     c.results.set(id_gsd_inch_, gsd / physics::metres_per_inch);
     c.results.set(id_rer_, rer);
+    if (id_rer_across_) {
+      c.results.set(*id_rer_across_, rer_across);
+      c.results.set(*id_rer_along_, rer_along);
+    }
     if (id_overshoot_) c.results.set(*id_overshoot_, overshoot);
     c.results.set(id_snr_, snr);
     c.results.set(id_niirs_, niirs);
@@ -141,7 +179,8 @@ class Giqe final : public Stage {
   LookTerms look_;
   ResultId f_number_{};
   std::optional<ResultId> obscuration_, detector_snr_;
-  std::optional<ResultId> id_overshoot_;
+  std::optional<ResultId> id_overshoot_, id_rer_across_, id_rer_along_;
+  ResultId id_gsd_normal_{}, id_elevation_{};
   ResultId id_gsd_{}, id_gsd_inch_{}, id_rer_{}, id_snr_{}, id_niirs_{}, id_required_{}, id_margin_{},
       id_nyquist_{}, id_mtf_system_{}, id_mtf_diffraction_{}, id_mtf_pixel_{}, id_mtf_other_{}, id_q_{},
       id_budget_wavelength_{}, id_budget_pitch_{}, id_budget_jitter_{}, id_budget_smear_{}, id_budget_diffusion_{},

@@ -112,9 +112,18 @@ TEST(EarthObservation, FocalLengthForAGsdAtALookAndApertureForNiirs5) {
   const double rho = s * std::cos(theta) - std::sqrt(R * R - s * s * std::sin(theta) * std::sin(theta));
   const double eta = std::asin(s * std::sin(theta) / R);
   EXPECT_NEAR(value(r, "optics.focal_length"), p * rho / (g * std::sqrt(std::cos(eta))), 1e-6);
-  // at the solved aperture the GIQE-5 of the reported GSD, RER and SNR is 5 (independent evaluation)
+  // at the solved aperture the GIQE-5 is 5, evaluated independently: the weighted GSD of NGA eq. (5) from the
+  // closed-form slant range and elevation, the weighted RER of eq. (7) from the two directions' RERs
+  const double f = value(r, "optics.focal_length"), elevation = 90 * deg - eta;
+  const double gsd_w = p * rho / f / std::pow(std::sin(elevation), 0.25);
+  EXPECT_NEAR(value(r, "criteria.quality.gsd_normal_plane"), p * rho / f, 1e-9);
+  EXPECT_NEAR(value(r, "criteria.quality.target_elevation"), elevation, 1e-12);
+  EXPECT_NEAR(value(r, "criteria.quality.gsd_inches"), gsd_w / 0.0254, 1e-9);
+  const double across = value(r, "criteria.quality.rer_across_track"), along = value(r, "criteria.quality.rer_along_track");
+  EXPECT_LT(along, across);  // the example's smear and TDI act along track
   const double rer = value(r, "criteria.quality.rer");
-  EXPECT_NEAR(physics::giqe5_niirs(value(r, "criteria.quality.gsd_geometric_mean"), rer, 50), 5.0, 1e-6);
+  EXPECT_NEAR(rer, std::cbrt(across * along * along), 1e-15);
+  EXPECT_NEAR(physics::giqe5_niirs(gsd_w, rer, 50), 5.0, 1e-6);
   EXPECT_NEAR(value(r, "criteria.quality.niirs"), 5.0, 1e-6);
   EXPECT_GT(rer, 0.0);
   EXPECT_LT(rer, 1.0);

@@ -104,6 +104,23 @@ TEST(Giqe, Giqe4AgainstLeachtenauer1997ByHand) {
   EXPECT_NEAR(giqe4_niirs(0.31, 0.5, 1.0, 10, 100), 5.279170, 1e-6);
 }
 
+TEST(Giqe, Giqe5WeightsTheGsdAndTheLesserRer) {
+  // NGA GIQE v5.0 (2015) eq. (5): GSD_W = GSD / sin(elevation)^¼, the geometric mean of the normal-plane GSD and
+  // the ground-plane GSD / sin(elevation)^½; at nadir all three are one.
+  const double np = 0.4, elevation = 40 * pi / 180;
+  EXPECT_NEAR(giqe5_weighted_gsd_m(np, elevation), std::sqrt(np * np / std::sqrt(std::sin(elevation))), 1e-15);
+  EXPECT_DOUBLE_EQ(giqe5_weighted_gsd_m(np, pi / 2), np);
+  EXPECT_THROW(giqe5_weighted_gsd_m(np, 0), std::invalid_argument);
+  // Eq. (7), (RER_cs RER_as²)^⅓, against the document's Table 3 (cross-scan 0.329 against along-scan smear of
+  // 1, 2, 4 and 8 pixels: RER_wt 0.311, 0.272, 0.211, 0.149, printed to three decimals); symmetric in its
+  // arguments, the lesser counted twice.
+  const double along[] = {0.302, 0.247, 0.169, 0.100}, printed[] = {0.311, 0.272, 0.211, 0.149};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(giqe5_weighted_rer(0.329, along[i]), printed[i], 0.0005) << along[i];
+    EXPECT_DOUBLE_EQ(giqe5_weighted_rer(along[i], 0.329), giqe5_weighted_rer(0.329, along[i]));
+  }
+}
+
 TEST(Giqe, Giqe4ReproducesPublishedQuickBirdNiirs) {
   // Kim, Kim & Kim, "Image-based estimation and validation of NIIRS for high-resolution satellite images", ISPRS
   // Archives XXXVII-B1 (Beijing 2008), Table 3: GIQE-4 of QuickBird-2 pan images from RER and H measured on

@@ -26,6 +26,20 @@ double giqe5_niirs(double gsd_m, double rer, double snr, const Giqe5Coefficients
          c.a4 * std::pow(log_rer, 4) + c.a5 / snr;
 }
 
+double giqe5_weighted_gsd_m(double normal_plane_gsd_m, double elevation_rad) {
+  require_positive(normal_plane_gsd_m, "GIQE: normal-plane GSD");
+  if (!(elevation_rad > 0 && elevation_rad <= std::numbers::pi / 2 + 1e-12))
+    throw std::invalid_argument("GIQE: the target elevation must lie in (0°, 90°]");
+  return normal_plane_gsd_m / std::pow(std::sin(elevation_rad), 0.25);  // NGA GIQE v5.0 eq. (5)
+}
+
+double giqe5_weighted_rer(double rer_a, double rer_b) {
+  require_positive(rer_a, "GIQE: RER");
+  require_positive(rer_b, "GIQE: RER");
+  const double lesser = std::min(rer_a, rer_b);
+  return std::cbrt(std::max(rer_a, rer_b) * lesser * lesser);  // NGA GIQE v5.0 eq. (7)
+}
+
 double giqe4_niirs(double gsd_m, double rer, double overshoot, double noise_gain, double snr) {
   require_positive(gsd_m, "GIQE: GSD");
   require_positive(rer, "GIQE: RER");

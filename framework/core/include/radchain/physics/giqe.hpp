@@ -5,9 +5,12 @@
 //   GIQE-5: National Geospatial-Intelligence Agency, "General Image Quality Equation (GIQE) Version 5.0",
 //     NGA/NIPS (16 Sep 2015), the equation
 //       NIIRS = A0 + A1 log10 GSD + A2 [1 − exp(A3 / SNR)] log10 RER + A4 (log10 RER)^4 + A5 / SNR
-//     with A0 = 9.57, A1 = −3.32, A2 = 3.32, A3 = −1.9, A4 = −2.0, A5 = −1.8; GSD the geometric mean of the
-//     two GSDs in inches, RER the geometric-mean relative edge response, SNR the (post-processing) SNR of a
-//     reference target. The three versions are compared in "Comparative study of the different versions of the
+//     with A0 = 9.57, A1 = −3.32, A2 = 3.32, A3 = −1.9, A4 = −2.0, A5 = −1.8; GSD the weighted GSD of its
+//     eq. (5) in inches, RER the weighted relative edge response of its eq. (7) (below), SNR the SNR of a
+//     reference target in the unenhanced image. The document states where its data end: Q = λN/p between 1
+//     and 2 (Q > 2 "a pure extrapolation"), smear up to 4 pixels in the fit (8 in the smear study), target
+//     elevations down to 8.9°, less precise below SNR 5 (its §2.2-4; docs/eo-imagers.md). Read from the public
+//     release in github.com/Kitware/pybsm @ 6a6d23d, docs/GIQE-5_for_Public_Release.pdf. The three versions are compared in "Comparative study of the different versions of the
 //     General Image Quality Equation" (ISPRS Open J. Photogramm. Remote Sens., 2023).
 //   GIQE-4: J. C. Leachtenauer, W. Malila, J. Irvine, L. Colburn, N. Salvaggio, "General Image-Quality
 //     Equation: GIQE", Appl. Opt. 36 (1997) 8322, eq. (2):
@@ -29,6 +32,13 @@ struct Giqe5Coefficients {
   double a0 = 9.57, a1 = -3.32, a2 = 3.32, a3 = -1.9, a4 = -2.0, a5 = -1.8;  // NGA GIQE v5.0 (2015)
 };
 
+// GIQE-5's weighted GSD, NGA GIQE v5.0 eq. (5): GSD_W = GSD_NP / sin(elevation)^¼, the geometric mean of the
+// normal-plane GSD GSD_NP = p R / f' (R the slant range) and the ground-plane GSD_NP / sin(elevation)^½ (GIQE-4's);
+// elevation = the target's, 90° − the view zenith angle.
+double giqe5_weighted_gsd_m(double normal_plane_gsd_m, double elevation_rad);
+// GIQE-5's weighted RER, NGA GIQE v5.0 eq. (7): (RER_cs RER_as²)^⅓ with RER_as ≤ RER_cs, i.e. the lesser of the
+// two directions counted twice ("a loss of RER in one direction cannot be mitigated by … the orthogonal direction").
+double giqe5_weighted_rer(double rer_a, double rer_b);
 // GIQE-5 NIIRS; gsd in metres (converted to inches here), rer and snr > 0.
 double giqe5_niirs(double gsd_m, double rer, double snr, const Giqe5Coefficients& c = {});
 // GIQE-4 NIIRS; gsd in metres, overshoot H, noise gain G (1 without sharpening), snr > 0.
