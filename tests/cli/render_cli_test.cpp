@@ -60,6 +60,12 @@ TEST(RenderCli, DatasheetImagerRendersAndValidates) {
   EXPECT_NE(big.err.find("native reads"), std::string::npos) << big.err;
   EXPECT_EQ(std::count(big.err.begin(), big.err.end(), '\n'), 1) << big.err;
   EXPECT_FALSE(fs::exists(scratch / "big.fits"));
+  // An output sampling so coarse that the map holds one native sample: no binned pixel, refused, not an empty image.
+  const CliResult tiny = run_cli(scratch, "render '" + s2 + "' --set detector.binning=2 --gsd '100 km' --scene-sampling '1 m' --out " +
+                                              (scratch / "tiny.fits").string());
+  EXPECT_EQ(tiny.exit_code, 2) << tiny.err;
+  EXPECT_NE(tiny.err.find("too few for one 2×2 binned pixel"), std::string::npos) << tiny.err;
+  EXPECT_FALSE(fs::exists(scratch / "tiny.fits"));
 }
 
 // Each bad option value: exit 2, nothing on stdout, exactly this one line on stderr.

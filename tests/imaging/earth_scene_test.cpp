@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 
 namespace {
 using namespace radchain;
@@ -238,10 +239,14 @@ TEST(RenderEarthDatasheet, BinnedAndCoaddedFramesSumTheirNativeReads) {
   const FlatFieldCheck check = check_earth_flat_field(k.chain, k.report, EarthSceneOptions{}, 256, 11);
   EXPECT_NEAR(check.predicted_snr, *k.report.value("detector.snr"), 1e-9 * check.predicted_snr);
   EXPECT_TRUE(check.passed(4.0)) << check.measured_snr << " ± " << check.snr_sigma << " vs " << check.predicted_snr;
-  // The fixed pattern does not average over co-adds: M = 3 gains less than √3 over one frame.
+  // By hand from one native pixel's terms: M b² = 12 reads of the temporal variance T, the fixed pattern F
+  // M² b² = 36 times (it does not average over co-adds), so SNR₁₂/SNR₁ = 12 √(T + F) / √(12 T + 36 F) < √12.
   const FlatFieldCheck single = check_earth_flat_field(native.chain, native.report, EarthSceneOptions{}, 256, 11);
-  EXPECT_LT(check.predicted_snr / single.predicted_snr, std::sqrt(12.0));
-  EXPECT_GT(check.predicted_snr / single.predicted_snr, 1.0);
+  const double photo = one.photo_electrons(0.3), q = 1.0 / one.gain_dn_per_e;
+  const double temporal = photo + one.dark_electrons + one.read_noise_e * one.read_noise_e + q * q / 12;
+  const double fixed = one.dsnu_e * one.dsnu_e + one.prnu * one.prnu * photo * photo;
+  EXPECT_NEAR(check.predicted_snr / single.predicted_snr, 12 * std::sqrt(temporal + fixed) / std::sqrt(12 * temporal + 36 * fixed),
+              1e-9);
   const Header h = earth_scene_header(s, 1);
   EXPECT_EQ(card_number(h, "BINNING"), 2.0);
   EXPECT_EQ(card_number(h, "NCOADD"), 3.0);
@@ -261,6 +266,23 @@ TEST(RenderEarthDatasheet, ABinnedPixelHasTheArrayFactorOfItsNativePixels) {
   const EdgeCheck edge = check_edge_mtf(binned.chain, binned.report, EarthSceneOptions{});
   EXPECT_TRUE(edge.passed()) << "max relative error " << edge.max_relative_error;
   EXPECT_NEAR(edge.mtf_at_nyquist_measured, edge.mtf_at_nyquist_model, 0.02);
+  // An output sampling given by hand: the native samples are 1.5 pitches apart, and two of them sum to
+  // cos(π δ ν) with δ = 1.5 p on the focal plane.
+  EarthSceneOptions o = options(2.0);
+  o.output_sampling_m = 3.0 * *binned.report.value("criteria.gsd.gsd_nadir");
+  const EarthSceneSetup wide = earth_scene_setup(binned.chain, binned.report, o);
+  EXPECT_NEAR(system_mtf(wide, nu_ground, 0) / system_mtf(n, nu_ground, 0), std::abs(std::cos(std::numbers::pi * 1.5 * 0.25)), 1e-12);
+}
+
+TEST(RenderEarthDatasheet, AMapTooSmallForOneBinnedPixelIsRefused) {
+  auto k = load(s2, {{"detector.binning", "2"}});
+  const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, options(9.825));
+  try {
+    render_earth_scene(s, make_flat_scene(1, 1, 0.3), 1);
+    ADD_FAILURE() << "a 1×1 map gave a binned image";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("too few for one 2×2 binned pixel"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RenderEarthDatasheet, TooManyNativeReadsAreRefusedBeforeDrawing) {

@@ -213,7 +213,7 @@ FlatFieldCheck check_earth_flat_field(Chain& chain, const Report& report, EarthS
   if (size < 8) detail::refuse(chain.sensor_file, "flat field", "needs ≥ 8 pixels");
   if (!(scene.input_sampling_m > 0)) scene.input_sampling_m = 1.0;
   const double gsd = earth_scene_setup(chain, report, scene).output_sampling_m;
-  scene.output_sampling_m = scene.input_sampling_m = gsd;  // one input pixel per output pixel: no resampling
+  scene.output_sampling_m = scene.input_sampling_m = gsd;  // one input pixel per output pixel (b native samples of a flat map)
   const EarthSceneSetup s = earth_scene_setup(chain, report, scene);
   FlatFieldCheck check;
   const double q = s.exposure_per_dn();

@@ -69,10 +69,11 @@ double detector_otf_y(const EarthSceneSetup& s, double nu_focal) {
   return otf;
 }
 
-// b native pixel apertures p apart summed into one binned pixel: their array factor sin(π b p ν)/(b sin(π p ν))
-// (the element's sinc is in detector_otf_*). Not applied to the native field: the binning sum does it.
+// b native samples δ apart summed into one binned pixel: their array factor sin(π b δ ν)/(b sin(π δ ν)), δ the
+// native sampling on the focal plane (the pitch p unless an output sampling was given); the element's sinc is in
+// detector_otf_*. Not applied to the native field: the binning sum does it.
 double binning_otf(const EarthSceneSetup& s, double nu_focal) {
-  return physics::shifted_copies_otf(nu_focal, s.binning, s.pitch_m);
+  return physics::shifted_copies_otf(nu_focal, s.binning, s.native_sampling_m() * s.ground_to_focal());
 }
 
 // Native samples per input pixel.
@@ -205,8 +206,7 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   // One output pixel per detector sample: the pixel-pitch GSD h p / f' (of a binned pixel: b h p / f'), else
   // Kolobrodov's element V_s h / f'.
   s.output_sampling_m = o.output_sampling_m ? *o.output_sampling_m
-                        : s.pixel_gsd_m > 0 ? s.binning * s.pixel_gsd_m
-                                            : s.ground_element_m;
+                                            : s.binning * (s.pixel_gsd_m > 0 ? s.pixel_gsd_m : s.ground_element_m);
   if (!(s.output_sampling_m > 0))
     refuse(file, "output sampling",
            "the sensor publishes neither criteria.<name>.gsd_nadir nor criteria.<name>.ground_element: give the output sampling");
@@ -334,6 +334,19 @@ Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
 }
 
 Image render_earth_scene(const EarthSceneSetup& s, const Image& reflectance, std::uint64_t seed) {
+  // The output's size and the native reads it sums, refused before any work.
+  const int wo = earth_output_size(s, reflectance.width), ho = earth_output_size(s, reflectance.height);
+  if (wo < 1 || ho < 1)
+    refuse(s.sensor_file, "output sampling",
+           fmt::format("a {}×{} map at {:g} m gives {}×{} native samples at {:g} m, too few for one {}×{} binned pixel",
+                       reflectance.width, reflectance.height, s.input_sampling_m, native_size(s, reflectance.width),
+                       native_size(s, reflectance.height), s.native_sampling_m(), s.binning, s.binning));
+  const double draws = static_cast<double>(wo) * ho * s.native_sums();
+  if (draws > 4e9)
+    refuse(s.sensor_file, std::string(vocabulary::detector_exposures.name),
+           fmt::format("{}×{} pixels of {}×{} binned pixels over {} frames is {:.3g} native reads to draw (at most 4e9): "
+                       "render a smaller scene or fewer exposures",
+                       wo, ho, s.binning, s.binning, s.exposures, draws));
   Image image = filtered_reflectance(s, reflectance);
   detail::Random random(seed);
   const double q = s.exposure_per_dn(), top = std::exp2(s.adc_bits) - 1.0;
@@ -353,13 +366,7 @@ Image render_earth_scene(const EarthSceneSetup& s, const Image& reflectance, std
   // Electrons (EMVA 1288 eqs. 1-6, 18), per native pixel and frame. The fixed pattern comes from its own stream,
   // so that it is the same for one seed whatever the noise switches, and in every co-added frame.
   const int b = s.binning, frames = s.exposures;
-  Image out(image.width / b, image.height / b);
-  const double draws = static_cast<double>(out.width) * out.height * s.native_sums();
-  if (draws > 4e9)
-    refuse(s.sensor_file, std::string(vocabulary::detector_exposures.name),
-           fmt::format("{}×{} pixels of {}×{} binned pixels over {} frames is {:.3g} native reads to draw (at most 4e9): "
-                       "render a smaller scene or fewer exposures",
-                       out.width, out.height, b, b, frames, draws));
+  Image out(wo, ho);
   detail::Random pattern(seed ^ 0x9e3779b97f4a7c15ULL);
   const double dark = s.dark ? s.dark_electrons : 0.0;
   // Per native pixel: the mean photo signal with its PRNU, and the dark level with its DSNU.
@@ -408,7 +415,7 @@ Header earth_scene_header(const EarthSceneSetup& s, std::uint64_t seed) {
   const bool electrons = s.radiometry == EarthRadiometry::electrons;
   text("BUNIT", earth_unit(s), s.quantisation ? "ADC counts" : electrons ? "charge" : "exposure");
   text("RADIOM", electrons ? "electrons" : "exposure", electrons ? "datasheet detector (EMVA 1288)" : "noise-equivalent exposure (Kolobrodov)");
-  number("EXPTIME", s.integration_time_s, "[s] line integration time");
+  number("EXPTIME", s.integration_time_s, "[s] line integration time of one frame");
   number("ALTITUDE", s.altitude_m, "[m] platform altitude");
   number("FOCALLEN", s.focal_length_m * 1e3, "[mm] focal length");
   number("APERTURE", s.aperture_m * 1e3, "[mm] entrance pupil");
@@ -445,7 +452,7 @@ Header earth_scene_header(const EarthSceneSetup& s, std::uint64_t seed) {
     number("FULLWELL", s.capacity_e, "[e-] saturation capacity");
     if (s.quantisation) {
       h.push_back({"ADCBITS", static_cast<std::int64_t>(s.adc_bits), "ADC resolution"});
-      number("OFFSET", s.offset_dn, "[adu] ADC pedestal");
+      number("OFFSET", s.offset_dn, "[adu] ADC pedestal per native read (summed: x BINNING^2 x NCOADD)");
     }
     number("RHO", s.scene_reflectance, "the chain's scene reflectance");
     number("SNR", s.snr, "chain SNR of the scene pixel");

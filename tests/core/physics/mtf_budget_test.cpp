@@ -61,7 +61,12 @@ TEST(MtfBudget, ShiftedCopiesKeepTheirSign) {
       EXPECT_NEAR(shifted_copies_otf(nu, copies, p), sum / copies, 1e-12) << copies << " copies at " << nu * p << "/p";
     }
   EXPECT_LT(shifted_copies_otf(0.5 / p, 3, p), 0.0);
-  EXPECT_DOUBLE_EQ(shifted_copies_otf(1.0 / p, 3, p), 1.0);  // sin(π δ ν) = 0: every copy in phase
+  // At ν = 1/δ (sin(π δ ν) = 0) the centred copies sit at half-integer phases for even N: −1; odd N: +1.
+  for (const int copies : {2, 3, 4, 5}) {
+    double sum = 0;
+    for (int k = 0; k < copies; ++k) sum += std::cos(2 * pi * (k - 0.5 * (copies - 1)));
+    EXPECT_NEAR(shifted_copies_otf(1.0 / p, copies, p), sum / copies, 1e-12) << copies << " copies at 1/δ";
+  }
 }
 
 TEST(EdgeResponse, GaussianMtfGivesTheErrorFunctionEdge) {

@@ -213,7 +213,7 @@ double tdi_synchronisation_mtf(double frequency_per_m, double stages, double mis
 
 double shifted_copies_otf(double frequency_per_m, double copies, double shift_m) {
   const double a = pi * shift_m * frequency_per_m;
-  if (std::abs(std::sin(a)) < 1e-12) return 1.0;
+  if (std::abs(std::sin(a)) < 1e-12) return std::cos(copies * a) / std::cos(a);  // the limit: ±1 (−1 for even N at odd k)
   return std::sin(copies * a) / (copies * std::sin(a));
 }
 

@@ -116,7 +116,8 @@ double wavefront_error_mtf(double frequency_per_m, double wavelength_m, double f
 double tdi_synchronisation_mtf(double frequency_per_m, double stages, double mismatch_fraction, double pixel_pitch_m);
 // The signed OTF of N equal copies of an image shifted by δ each (centred): sin(π N δ ν)/(N sin(π δ ν)), the
 // Dirichlet kernel behind TDI synchronisation (δ = mismatch·p, above) and b×b binning (N = b, δ = p; Holst 2008
-// ch. 10, sampled-data systems). 1 where sin(π δ ν) = 0. Signed, for images that keep contrast reversal.
+// ch. 10, sampled-data systems). Where sin(π δ ν) = 0 its limit cos(π N δ ν)/cos(π δ ν) = ±1. Signed, for images
+// that keep contrast reversal.
 double shifted_copies_otf(double frequency_per_m, double copies, double shift_m);
 // Nyquist frequency of a pixel pitch p: 1/(2p).
 double nyquist_frequency_per_m(double pixel_pitch_m);
