@@ -249,6 +249,7 @@ class Emva1288 final : public Stage {
     id_saturation_ = c.declare(vocabulary::detector_saturation_capacity, "min(μ_e.sat, (2^bits − 1)/K)", "e-");
     id_gain_ = c.declare(vocabulary::detector_system_gain, "input K", "DN/e-");
     id_tdi_ = c.declare(vocabulary::detector_tdi_stages, "input N_tdi");
+    id_exposures_ = c.declare(vocabulary::detector_exposures, "input M");
     id_sky_ = c.declare(vocabulary::detector_sky_electrons_per_pixel,
                         "B = N_tdi b² t p² ∫ E'_λ,sky η λ/(hc) dλ (étendue) per binned pixel and frame", "e-");
     id_peak_fraction_ = c.declare("peak_pixel_fraction", "1", "fraction of the point image in the brightest native pixel");
@@ -374,6 +375,7 @@ class Emva1288 final : public Stage {
     a.set(id_ensquared_, ensquared);
     a.set(id_gain_, gain);
     a.set(id_tdi_, tdi);
+    a.set(id_exposures_, m);
     a.set(id_peak_fraction_, peak_fraction);
     a.set(id_psf_fwhm_, fwhm);
     if (circle_photometry_) a.set(id_aperture_radius_, radius_m / binned);

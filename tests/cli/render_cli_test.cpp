@@ -75,6 +75,17 @@ struct BadOption {
 
 // A scene file that cannot be read (not an image, a truncated FITS, missing) is input refused at --scene: one
 // line, exit 2, no output — not an internal error.
+// PSF-weighted photometry (emva1288 photometry = "psf", the Rubin files): validate measures the matched filter on a
+// still target, not a square window that holds only part of the image (it reported FAIL on every Rubin file).
+TEST(RenderCli, PsfPhotometryValidatesWithTheMatchedFilter) {
+  Scratch scratch;
+  const CliResult v = run_cli(scratch, "validate '" + source_dir + "/sensors/rubin-lsst-r-m5.toml' --trials 2000 --size 64");
+  EXPECT_EQ(v.exit_code, 0) << v.out << v.err;
+  EXPECT_NE(v.out.find("PSF-weighted photometry at the limiting magnitude"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("ok   matched-filter SNR"), std::string::npos) << v.out;
+  EXPECT_EQ(v.out.find("window signal"), std::string::npos) << v.out;
+}
+
 TEST(RenderCli, UnreadableSceneIsBadInput) {
   Scratch scratch;
   const std::string fits = (scratch / "garbage.fits").string(), png = (scratch / "garbage.png").string();

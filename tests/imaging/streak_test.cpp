@@ -53,6 +53,37 @@ TEST(RenderStreak, MeasuredStreakSnrAndTrailingLoss) {
   EXPECT_LT(c.predicted_snr_loss(), c.chain_trailing_loss);
 }
 
+// A still target counted by PSF-weighted photometry (the Rubin r file): the matched filter measured on frames, its
+// n_eff the chain's on the same pixel grid, and the chain's S/√(S + n_eff v) rebuilt from the frame's own light and
+// per-pixel variance equal to the chain's SNR at the limiting magnitude.
+TEST(RenderPsfPhotometry, TheMatchedFilterMeasuresTheChainsStillTarget) {
+  Chain chain = load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/rubin-lsst-r-m5.toml");
+  const Report report = chain.run();
+  ASSERT_TRUE(psf_weighted_photometry(report));
+  StreakCheckOptions o;
+  o.trials = 3000;
+  const PsfPhotometryCheck c = check_psf_photometry(chain, report, SpaceFrameOptions{}, o);
+  EXPECT_NEAR(c.neff / report.value("detector.noise_equivalent_area").value(), 1.0, 1e-5);
+  EXPECT_NEAR(c.chain_snr, 5.0, 1e-6);
+  EXPECT_NEAR(c.chain_form_snr / c.chain_snr, 1.0, 1e-4);
+  // The matched filter's law is lower only by the source's own shot noise (< 1 % at SNR 5, background-limited).
+  EXPECT_LT(c.still.predicted, c.chain_form_snr);
+  EXPECT_GT(c.still.predicted, 0.99 * c.chain_form_snr);
+  EXPECT_TRUE(c.passed(4.0)) << c.still.measured << " ± " << c.still.sigma << " vs " << c.still.predicted;
+  // Window photometry is not PSF-weighted: the same file counting a 5×5 window.
+  Chain window = load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/rubin-lsst-r-m5.toml",
+                             {{"detector.photometry", "window"}, {"detector.window_pixels", "5"}});
+  EXPECT_FALSE(psf_weighted_photometry(window.run()));
+  // A frame is one exposure: co-adds are refused at their result, not drawn as one frame.
+  Chain coadded = load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/rubin-lsst-r-m5.toml", {{"detector.exposures", "4"}});
+  try {
+    check_psf_photometry(coadded, coadded.run(), SpaceFrameOptions{}, o);
+    ADD_FAILURE() << "4 co-added exposures rendered as one frame";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("detector.exposures"), std::string::npos) << e.what();
+  }
+}
+
 TEST(RenderStreak, DrawsTheStreakAndRefusesOneLongerThanTheFrame) {
   Streak s = rubin_geo_1s();
   SpaceFrameOptions o;

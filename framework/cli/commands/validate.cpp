@@ -44,6 +44,29 @@ int validate_command(const ValidateCommand& c) {
                "loss at constant SNR (background-limited) {:.4f}\n",
                verdict(std::abs(check.measured_snr_loss() - check.predicted_snr_loss()) <= max_z * check.snr_loss_sigma()),
                check.measured_snr_loss(), check.snr_loss_sigma(), check.predicted_snr_loss(), check.chain_trailing_loss);
+  } else if (is_point_target_sensor(chain) && psf_weighted_photometry(report)) {
+    // PSF-weighted photometry of a still target: the matched filter, not a square window.
+    SpaceFrameOptions frame;
+    apply_frame_geometry(frame, v);
+    StreakCheckOptions o;
+    o.trials = v.integer("--trials");
+    o.seed = c.seed;
+    const PsfPhotometryCheck check = check_psf_photometry(chain, report, frame, o);
+    fmt::print("{}: PSF-weighted photometry at the limiting magnitude {:.4f} (S = {:.4g} e-, n_eff {:.4g} px rendered, {:.4g} "
+               "chain; {} frames)\n",
+               c.sensor.sensor, check.magnitude, check.signal_electrons, check.neff, check.chain_neff, check.trials);
+    fmt::print("  {} matched-filter SNR measured {:.4f} ± {:.2g}, renderer's law {:.4f} (z = {:+.2f})\n",
+               verdict(std::abs(check.still.z()) <= max_z), check.still.measured, check.still.sigma, check.still.predicted,
+               check.still.z());
+    fmt::print("  {} S/√(S + n_eff v) on the frame {:.4f} vs chain SNR {:.4f} ({:+.3f} %, within {:g} %); the matched filter's "
+               "law differs by the source's own shot noise ({:+.2f} %)\n",
+               verdict(check.chain_agrees()), check.chain_form_snr, check.chain_snr,
+               100 * (check.chain_form_snr / check.chain_snr - 1), 100 * check.tolerance,
+               100 * (check.still.predicted / check.chain_form_snr - 1));
+    const FlatFieldCheck flat = check_space_flat_field(chain, report, frame, size, c.seed);
+    fmt::print("  {} flat field: measured SNR {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.5g} vs {:.5g} e-\n",
+               verdict(flat.passed(max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
+               flat.measured_noise, flat.predicted_noise);
   } else if (is_point_target_sensor(chain)) {
     SpaceFrameOptions frame;
     apply_frame_geometry(frame, v);

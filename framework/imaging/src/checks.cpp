@@ -269,9 +269,97 @@ double StreakCheck::snr_loss_sigma() const {
   return 2.5 / std::numbers::ln10 * std::hypot(still.sigma / still.measured, streak.sigma / streak.measured);
 }
 
+bool PsfPhotometryCheck::passed(double max_z) const { return std::abs(still.z()) <= max_z && chain_agrees(); }
+
 bool StreakCheck::passed(double max_z) const {
   return std::abs(streak.z()) <= max_z && std::abs(still.z()) <= max_z &&
          std::abs(measured_snr_loss() - predicted_snr_loss()) <= max_z * snr_loss_sigma();
+}
+
+namespace {
+// PSF-weighted (matched-filter) photometry of the frame's one target on `trials` rendered frames: the weights f_i
+// are the target's expected share of each pixel (from the renderer's own expected image), the estimate
+// Σ f_i (e_i − B)/Σ f_i² (unbiased for the target's total), its SNR mean/σ over the frames; the renderer's law
+// from the same weights and each pixel's variance; n_eff = 1/Σ f_i² (King 1983).
+struct MatchedFilter {
+  StreakSnr snr;
+  double neff = 0, signal = 0;
+  double chain_form_snr = 0;  // S/√(S + n_eff v) with the frame's n_eff and per-pixel variance v (SMTN-002's form)
+};
+
+MatchedFilter matched_filter(Chain& chain, const Report& report, const SpaceFrameOptions& frame, long trials, std::uint64_t seed) {
+  const SpaceFrameSetup s = space_frame_setup(chain, report, frame);
+  const SpaceFrameRenderer renderer(s);
+  const Image expected = renderer.expected_electrons();
+  const double background = s.sky_electrons + s.dark_electrons, total = s.sources.at(0).electrons;
+  std::vector<std::size_t> index;
+  std::vector<double> f;
+  double sum_f2 = 0;
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    if (const double v = (expected.pixels[i] - background) / total; v > 1e-9) {  // float: 1e-7 relative is noise
+      index.push_back(i);
+      f.push_back(v);
+      sum_f2 += v * v;
+    }
+  const double floor_variance = (s.noise.shot ? s.sky_electrons : 0.0) + (s.noise.dark ? s.dark_electrons : 0.0) +
+                                (s.noise.read ? s.read_noise_electrons * s.read_noise_electrons : 0.0) +
+                                (s.noise.quantisation ? s.gain_e_per_dn * s.gain_e_per_dn / 12.0 : 0.0);
+  double variance = 0;
+  for (const double v : f) variance += v * v * ((s.noise.shot ? total * v : 0.0) + floor_variance);
+  variance /= sum_f2 * sum_f2;
+  MatchedFilter out;
+  out.snr.predicted = total / std::sqrt(variance);
+  out.neff = 1.0 / sum_f2;
+  out.signal = total;
+  out.chain_form_snr = total / std::sqrt((s.noise.shot ? total : 0.0) + out.neff * floor_variance);
+  Moments m;
+  Image image;
+  for (long t = 0; t < trials; ++t) {
+    renderer.render(seed + static_cast<std::uint64_t>(t), image);
+    double estimate = 0;
+    for (std::size_t k = 0; k < index.size(); ++k) {
+      const double value = image.pixels[index[k]];
+      const double electrons = s.noise.quantisation ? s.gain_e_per_dn * (value - s.offset_dn) : value;
+      estimate += f[k] * (electrons - background);
+    }
+    m.add(estimate / sum_f2);
+  }
+  out.snr.measured = m.mean() / std::sqrt(m.variance());
+  const double n = static_cast<double>(m.n);
+  out.snr.sigma = std::sqrt(1.0 / n + out.snr.predicted * out.snr.predicted / (2.0 * n));
+  return out;
+}
+}  // namespace
+
+bool psf_weighted_photometry(const Report& report) {
+  const auto neff = detail::result(report, vocabulary::detector_noise_equivalent_area);
+  const auto pixels = detail::result(report, vocabulary::detector_window_pixel_count);
+  const auto ensquared = detail::result(report, vocabulary::detector_ensquared_energy);
+  // emva1288's photometry = "psf": the photometric aperture is n_eff pixels holding all of the image.
+  return neff && pixels && ensquared && *ensquared == 1.0 && std::abs(*pixels - *neff) <= 1e-12 * *neff;
+}
+
+PsfPhotometryCheck check_psf_photometry(Chain& chain, const Report& report, SpaceFrameOptions frame, const StreakCheckOptions& o) {
+  if (o.trials < 10) detail::refuse(chain.sensor_file, "trials", "at least 10 frames");
+  clear_sources(frame);
+  const SpaceFrameSetup geometry = space_frame_setup(chain, report, frame);
+  if (!(geometry.gaussian_fwhm_m > 0))
+    detail::refuse(chain.sensor_file, "psf", "PSF-weighted photometry is measured with the chain's Gaussian PSF (detector.psf_fwhm)");
+  const double sigma = geometry.gaussian_fwhm_m / (2.0 * std::sqrt(2.0 * std::numbers::ln2)) / geometry.pixel_pitch_m;
+  const int margin = static_cast<int>(std::ceil(8.0 * sigma)) + 4;
+  frame.width = frame.height = 2 * margin;
+  frame.targets = {{margin + 0.5, margin + 0.5, geometry.limiting_magnitude}};
+  PsfPhotometryCheck check;
+  check.trials = o.trials;
+  check.magnitude = geometry.limiting_magnitude;
+  check.chain_snr = geometry.limit_signal_electrons / geometry.limit_noise_electrons;
+  check.chain_neff = detail::result(report, vocabulary::detector_noise_equivalent_area).value_or(std::nan(""));
+  const MatchedFilter still = matched_filter(chain, report, frame, o.trials, o.seed);
+  check.still = still.snr;
+  check.neff = still.neff;
+  check.signal_electrons = still.signal;
+  check.chain_form_snr = still.chain_form_snr;
+  return check;
 }
 
 StreakCheck check_streak(Chain& chain, const Report& report, SpaceFrameOptions frame, const StreakCheckOptions& o) {
@@ -296,49 +384,15 @@ StreakCheck check_streak(Chain& chain, const Report& report, SpaceFrameOptions f
   check.streak_px = geometry.target_streak_px;
   check.chain_snr = geometry.limit_signal_electrons / geometry.limit_noise_electrons;
   // The moving target, then the same target still: matched filter from each frame's own expected light.
-  auto measure = [&](double streak_px, StreakSnr& out, double& neff, double& signal) {
-    frame.target_streak_px = streak_px;
-    const SpaceFrameSetup s = space_frame_setup(chain, report, frame);
-    const SpaceFrameRenderer renderer(s);
-    const Image expected = renderer.expected_electrons();
-    const double background = s.sky_electrons + s.dark_electrons, total = s.sources.at(0).electrons;
-    std::vector<std::size_t> index;
-    std::vector<double> f;
-    double sum_f2 = 0;
-    for (std::size_t i = 0; i < expected.size(); ++i)
-      if (const double v = (expected.pixels[i] - background) / total; v > 1e-9) {  // float: 1e-7 relative is noise
-        index.push_back(i);
-        f.push_back(v);
-        sum_f2 += v * v;
-      }
-    const double floor_variance = (s.noise.shot ? s.sky_electrons : 0.0) + (s.noise.dark ? s.dark_electrons : 0.0) +
-                                  (s.noise.read ? s.read_noise_electrons * s.read_noise_electrons : 0.0) +
-                                  (s.noise.quantisation ? s.gain_e_per_dn * s.gain_e_per_dn / 12.0 : 0.0);
-    double variance = 0;
-    for (const double v : f) variance += v * v * ((s.noise.shot ? total * v : 0.0) + floor_variance);
-    variance /= sum_f2 * sum_f2;
-    out.predicted = total / std::sqrt(variance);
-    neff = 1.0 / sum_f2;
-    signal = total;
-    Moments m;
-    Image image;
-    for (long t = 0; t < o.trials; ++t) {
-      renderer.render(o.seed + static_cast<std::uint64_t>(t), image);
-      double estimate = 0;
-      for (std::size_t k = 0; k < index.size(); ++k) {
-        const double value = image.pixels[index[k]];
-        const double electrons = s.noise.quantisation ? s.gain_e_per_dn * (value - s.offset_dn) : value;
-        estimate += f[k] * (electrons - background);
-      }
-      m.add(estimate / sum_f2);
-    }
-    out.measured = m.mean() / std::sqrt(m.variance());
-    const double n = static_cast<double>(m.n);
-    out.sigma = std::sqrt(1.0 / n + out.predicted * out.predicted / (2.0 * n));
-  };
-  measure(geometry.target_streak_px, check.streak, check.neff, check.signal_electrons);
-  double still_signal = 0;
-  measure(0.0, check.still, check.static_neff, still_signal);
+  frame.target_streak_px = geometry.target_streak_px;
+  const MatchedFilter streak = matched_filter(chain, report, frame, o.trials, o.seed);
+  check.streak = streak.snr;
+  check.neff = streak.neff;
+  check.signal_electrons = streak.signal;
+  frame.target_streak_px = 0.0;
+  const MatchedFilter still = matched_filter(chain, report, frame, o.trials, o.seed);
+  check.still = still.snr;
+  check.static_neff = still.neff;
   check.chain_trailing_loss = detail::result(report, vocabulary::detector_trailing_loss).value_or(std::nan(""));
   return check;
 }

@@ -119,6 +119,13 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
   if (result(report, vocabulary::detector_aperture_radius_pixels))
     refuse(file, "detector", "photometry = \"circle\" is not measured on frames (validate counts n×n windows): use "
                              "photometry = \"window\" or \"psf\" to render or validate");
+  // One frame of one exposure: co-added frames and TDI stages are not simulated here (the chain's signal would be
+  // M or N_tdi exposures' worth in one frame's noise).
+  for (const Term* term : {&vocabulary::detector_exposures, &vocabulary::detector_tdi_stages})
+    if (const double n = result(report, *term).value_or(1.0); n != 1.0)
+      refuse(file, std::string(term->name),
+             fmt::format("a point-target frame is one exposure; {:g} {} are not simulated (render and validate one)", n,
+                         term == &vocabulary::detector_exposures ? "co-added exposures" : "TDI stages"));
   const auto time = result(report, vocabulary::detector_integration_time);
   const auto well = result(report, vocabulary::detector_saturation_capacity);
   const auto bits = result(report, vocabulary::detector_adc_bits);

@@ -160,4 +160,26 @@ struct StreakCheck {
 // (d) at the limiting magnitude, the streak of the chain's detector.target_streak_pixels (refused when 0).
 StreakCheck check_streak(Chain& chain, const Report& report, SpaceFrameOptions frame, const StreakCheckOptions& options = {});
 
+// (e) PSF-weighted photometry of a still target (emva1288 photometry = "psf", whose signal is the whole image
+// counted over n_eff pixels: a square window does not measure it). The target at the limiting magnitude on
+// `trials` frames, measured by the matched filter against the renderer's law (the same weights, each pixel's
+// variance). The chain counts S/√(S + n_eff v) (SMTN-002), which differs from the matched filter's law only in the
+// source's own shot noise (S Σf³/(Σf²)² instead of S: up to 4/3 of it for a source-limited Gaussian); that form,
+// evaluated on the frame's own n_eff and per-pixel variance v, must be the chain's SNR to `tolerance`.
+struct PsfPhotometryCheck {
+  double magnitude = 0, signal_electrons = 0;
+  double neff = 0, chain_neff = 0;  // 1/Σ f_i² of the rendered PSF; detector.noise_equivalent_area
+  double chain_snr = 0;             // detector.snr at the limiting magnitude
+  double chain_form_snr = 0;        // S/√(S + n_eff v) on the frame
+  long trials = 0;
+  StreakSnr still;
+  double tolerance = 1e-3;
+  bool chain_agrees() const { return std::abs(chain_form_snr / chain_snr - 1.0) <= tolerance; }
+  bool passed(double max_z = 4.0) const;  // measured within max_z σ of the renderer's law; the chain's form agrees
+};
+// True when the report's photometry is PSF-weighted (n_eff pixels, all of the image).
+bool psf_weighted_photometry(const Report& report);
+PsfPhotometryCheck check_psf_photometry(Chain& chain, const Report& report, SpaceFrameOptions frame,
+                                        const StreakCheckOptions& options = {});
+
 }  // namespace radchain::render
