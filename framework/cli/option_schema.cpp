@@ -70,6 +70,8 @@ const Schema& validate_option_schema() {
         number("--threshold", "2.33").fallback("2.3263478740408408").above(0)
             .described("detector threshold in noise units (default z(0.99): P_fa = 1 %)"),
         number("--max-z", "4").fallback("4").above(0).described("binomial standard errors allowed"),
+        number("--offset", "100").fallback("0").at_least(0)
+            .described("ADC pedestal (DN) of the rendered frames: keeps the noise of a faint frame off 0 DN"),
     };
     for (ParamSpec& p : frame_geometry()) s.push_back(std::move(p));
     return s;

@@ -84,6 +84,14 @@ TEST(RenderCli, PsfPhotometryValidatesWithTheMatchedFilter) {
   EXPECT_NE(v.out.find("PSF-weighted photometry at the limiting magnitude"), std::string::npos) << v.out;
   EXPECT_NE(v.out.find("ok   matched-filter SNR"), std::string::npos) << v.out;
   EXPECT_EQ(v.out.find("window signal"), std::string::npos) << v.out;
+  // A faint frame (Roman F062 at magnitude 25: 4.3 e- under 5 e- read noise, 1 DN/e-) without an ADC pedestal clips
+  // its noise at 0 DN: the checks fail and say why; with --offset they pass.
+  const std::string roman = "validate '" + source_dir + "/sensors/roman-wfi-f062-zero-point.toml' --trials 2000 --size 64";
+  const CliResult clipped = run_cli(scratch, roman);
+  EXPECT_EQ(clipped.exit_code, 1) << clipped.out << clipped.err;
+  EXPECT_NE(clipped.out.find("note: the rendered frames have no ADC pedestal"), std::string::npos) << clipped.out;
+  const CliResult pedestal = run_cli(scratch, roman + " --offset 100");
+  EXPECT_EQ(pedestal.exit_code, 0) << pedestal.out << pedestal.err;
 }
 
 TEST(RenderCli, UnreadableSceneIsBadInput) {

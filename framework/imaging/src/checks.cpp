@@ -343,10 +343,13 @@ PsfPhotometryCheck check_psf_photometry(Chain& chain, const Report& report, Spac
   if (o.trials < 10) detail::refuse(chain.sensor_file, "trials", "at least 10 frames");
   clear_sources(frame);
   const SpaceFrameSetup geometry = space_frame_setup(chain, report, frame);
-  if (!(geometry.gaussian_fwhm_m > 0))
-    detail::refuse(chain.sensor_file, "psf", "PSF-weighted photometry is measured with the chain's Gaussian PSF (detector.psf_fwhm)");
-  const double sigma = geometry.gaussian_fwhm_m / (2.0 * std::sqrt(2.0 * std::numbers::ln2)) / geometry.pixel_pitch_m;
-  const int margin = static_cast<int>(std::ceil(8.0 * sigma)) + 4;
+  // Room for the PSF's light: 8σ of a Gaussian, 8 FWHM (1.028 λN) of an Airy core, nothing for the pixel PSF
+  // (all of the image in one pixel, where the matched filter is that pixel).
+  double reach_px = 0;
+  if (geometry.psf == PsfModel::gaussian) reach_px = 8.0 * geometry.gaussian_fwhm_m / (2.0 * std::sqrt(2.0 * std::numbers::ln2));
+  else if (geometry.psf == PsfModel::airy) reach_px = 8.0 * 1.028 * geometry.psf_wavelength_m * geometry.f_number;
+  reach_px /= geometry.pixel_pitch_m;
+  const int margin = static_cast<int>(std::ceil(std::min(reach_px, 2048.0))) + 4;
   frame.width = frame.height = 2 * margin;
   frame.targets = {{margin + 0.5, margin + 0.5, geometry.limiting_magnitude}};
   PsfPhotometryCheck check;
