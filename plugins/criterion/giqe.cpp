@@ -4,7 +4,8 @@
 //        slant range R and the target's elevation (spherical Earth); GIQE-4: the ground-plane GSD, the geometric
 //        mean of the across- and along-track pixel-pitch GSDs (Leachtenauer 1997),
 //   RER  the relative edge response of the system MTF in each direction: across track diffraction of the
-//        (obscured) pupil at `wavelength` × the pixel aperture × jitter × diffusion × wavefront error; along
+//        (obscured) pupil at `wavelength` × the pixel aperture × jitter × diffusion × wavefront error × the
+//        long-exposure turbulence of a given Fried parameter (none by default); along
 //        track also × linear smear × TDI synchronisation (physics/mtf.hpp); the edge integrated from the MTF
 //        (physics/giqe.hpp). GIQE-5 takes the weighted RER of NGA eq. (7), (RER_cs RER_as²)^⅓; GIQE-4 the
 //        geometric mean — or a measured `rer` in the equation's own definition,
@@ -41,6 +42,8 @@ const Schema& schema() {
       number("tdi_stages", "32").fallback("1").at_least(1).described("TDI stages for the synchronisation MTF"),
       number("tdi_mismatch", "0.01").fallback("0").at_least(0).below(1)
           .described("TDI line-rate mismatch per stage, as a fraction of a pixel"),
+      quantity("fried_parameter", "m", "0.5 m").above(0)
+          .described("Fried parameter r0 of the line of sight at the pupil: long-exposure turbulence MTF (default none)"),
       number("rer", "0.5").above(0).at_most(1.5).described("measured relative edge response (replaces the MTF budget's)"),
       number("snr", "50").above(0).described("SNR of the reference target (default: the detector's detector.snr)"),
       number("noise_gain", "1").fallback("1").above(0).described("GIQE-4 noise gain G of the processing (1: none)"),
@@ -54,7 +57,7 @@ class Giqe final : public Stage {
       : params_(p), required_(p.handle("niirs")), wavelength_(p.handle("wavelength")),
         jitter_(p.handle("jitter_rms")), smear_(p.handle("smear_pixels")), diffusion_(p.handle("diffusion_rms")),
         wfe_(p.handle("wavefront_error")), tdi_stages_(p.handle("tdi_stages")), tdi_mismatch_(p.handle("tdi_mismatch")),
-        rer_(p.handle("rer")), snr_(p.handle("snr")), noise_gain_(p.handle("noise_gain")),
+        rer_(p.handle("rer")), snr_(p.handle("snr")), noise_gain_(p.handle("noise_gain")), fried_(p.handle("fried_parameter")),
         giqe4_(p.text("equation") == "giqe4") {
     if (!giqe4_ && p.given("noise_gain")) p.reject("noise_gain", "is a GIQE-4 term; set equation = \"giqe4\"");
   }
@@ -91,7 +94,7 @@ class Giqe final : public Stage {
     id_mtf_system_ = c.declare("mtf_nyquist_system", "1", "product of the components at Nyquist (along track)");
     id_mtf_diffraction_ = c.declare("mtf_nyquist_diffraction", "1", "annular pupil (O'Neill 1956) at Nyquist");
     id_mtf_pixel_ = c.declare("mtf_nyquist_pixel", "1", "|sinc(π p ν)| at Nyquist = 2/π");
-    id_mtf_other_ = c.declare("mtf_nyquist_other", "1", "jitter × smear × diffusion × wavefront × TDI at Nyquist");
+    id_mtf_other_ = c.declare("mtf_nyquist_other", "1", "jitter × smear × diffusion × wavefront × TDI × turbulence at Nyquist");
     id_q_ = c.declare("q_factor", "1", "Q = λN/p (sampling of the optics)");
     // The budget's inputs, so that `radchain mtf` draws the same cascade (physics/mtf_budget.hpp).
     id_budget_wavelength_ = c.declare("mtf_wavelength", "m", "input λ of the diffraction MTF", "um");
@@ -102,6 +105,7 @@ class Giqe final : public Stage {
     id_budget_wfe_ = c.declare("wavefront_error", "1", "input rms wavefront error (waves)");
     id_budget_tdi_stages_ = c.declare("tdi_stages", "1", "input TDI stages");
     id_budget_tdi_mismatch_ = c.declare("tdi_mismatch", "1", "input TDI mismatch per stage (pixels)");
+    id_budget_fried_ = c.declare("fried_parameter", "m", params_.has("fried_parameter") ? "input r0" : "0: no turbulence term", "cm");
   }
 
   void evaluate(Context& c) override {
@@ -117,7 +121,8 @@ class Giqe final : public Stage {
     const double gsd = giqe4_ ? gsd_ground : physics::giqe5_weighted_gsd_m(gsd_normal, elevation);
     const double n = c.results.value(f_number_), lambda = *wavelength_;
     const double eps = obscuration_ ? c.results.value(*obscuration_) : 0.0;
-    const physics::MtfBudget budget{lambda, n, eps, p, *jitter_, *smear_ * p, *diffusion_, *wfe_, *tdi_stages_, *tdi_mismatch_};
+    const physics::MtfBudget budget{lambda,         n, eps, p, *jitter_, *smear_ * p, *diffusion_, *wfe_, *tdi_stages_,
+                                    *tdi_mismatch_, look.focal_length_m, params_.has("fried_parameter") ? *fried_ : 0.0};
     physics::MtfBudget across_budget = budget;  // smear and TDI synchronisation act along track only
     across_budget.smear_m = 0;
     across_budget.tdi_stages = 1;
@@ -169,12 +174,13 @@ class Giqe final : public Stage {
     c.results.set(id_budget_wfe_, budget.wavefront_error_waves);
     c.results.set(id_budget_tdi_stages_, budget.tdi_stages);
     c.results.set(id_budget_tdi_mismatch_, budget.tdi_mismatch);
+    c.results.set(id_budget_fried_, budget.fried_parameter_m);
   }
 
  private:
   const Params& params_;
   const double *required_, *wavelength_, *jitter_, *smear_, *diffusion_, *wfe_, *tdi_stages_, *tdi_mismatch_,
-      *rer_, *snr_, *noise_gain_;
+      *rer_, *snr_, *noise_gain_, *fried_;
   bool giqe4_;
   LookTerms look_;
   ResultId f_number_{};
@@ -184,7 +190,7 @@ class Giqe final : public Stage {
   ResultId id_gsd_{}, id_gsd_inch_{}, id_rer_{}, id_snr_{}, id_niirs_{}, id_required_{}, id_margin_{},
       id_nyquist_{}, id_mtf_system_{}, id_mtf_diffraction_{}, id_mtf_pixel_{}, id_mtf_other_{}, id_q_{},
       id_budget_wavelength_{}, id_budget_pitch_{}, id_budget_jitter_{}, id_budget_smear_{}, id_budget_diffusion_{},
-      id_budget_wfe_{}, id_budget_tdi_stages_{}, id_budget_tdi_mismatch_{};
+      id_budget_wfe_{}, id_budget_tdi_stages_{}, id_budget_tdi_mismatch_{}, id_budget_fried_{};
 };
 
 }  // namespace

@@ -37,7 +37,7 @@ TEST(MtfCli, WritesTheBudgetOfAnEarthObservationCamera) {
   std::stringstream text;
   text << in.rdbuf();
   std::filesystem::remove(csv);
-  EXPECT_NE(text.str().find("frequency_mm-1,diffraction,pixel,jitter,smear,diffusion,wavefront,tdi,system\n0,1.000000,"),
+  EXPECT_NE(text.str().find("frequency_mm-1,diffraction,pixel,jitter,smear,diffusion,wavefront,tdi,atmosphere,system\n0,1.000000,"),
             std::string::npos);
   EXPECT_NE(text.str().find("# Nyquist 1/(2p) = 62.5 mm-1: system MTF"), std::string::npos);
   const auto row = text.str().find("\n62.5,");
@@ -47,10 +47,11 @@ TEST(MtfCli, WritesTheBudgetOfAnEarthObservationCamera) {
   std::stringstream fields(text.str().substr(row + 1, text.str().find('\n', row + 1) - row - 1));
   std::vector<double> v;
   for (std::string field; std::getline(fields, field, ',');) v.push_back(std::stod(field));
-  ASSERT_EQ(v.size(), 9u);
+  ASSERT_EQ(v.size(), 10u);
   EXPECT_NEAR(v[1], diffraction, 1e-6);
   EXPECT_NEAR(v[2], 2 / pi, 1e-6);
-  EXPECT_NEAR(v[8], diffraction * 2 / pi, 2e-6);
+  EXPECT_NEAR(v[8], 1.0, 1e-12);  // no turbulence term in the file
+  EXPECT_NEAR(v[9], diffraction * 2 / pi, 2e-6);
 }
 
 // The budget's plot: every curve in one panel (PNG 1000 × 620: one panel, where a panel per curve was 2620 tall),

@@ -47,13 +47,24 @@ TEST(MtfCurves, EarthObservationBudget) {
   EXPECT_NEAR(m.diffraction, diffraction, 1e-9);
   EXPECT_NEAR(m.pixel, 2 / M_PI, 1e-12);
   EXPECT_NEAR(m.jitter, std::exp(-2 * M_PI * M_PI * sigma * sigma * nyquist * nyquist), 1e-12);
-  EXPECT_NEAR(m.smear * m.diffusion * m.wavefront * m.tdi, 1.0, 1e-12);  // not set in the file
+  EXPECT_NEAR(m.smear * m.diffusion * m.wavefront * m.tdi * m.atmosphere, 1.0, 1e-12);  // not set in the file
   // The system at Nyquist is the criterion's own mtf_nyquist_system.
   EXPECT_NEAR(m.system(), *report.value("criteria.iq.mtf_nyquist_system"), 1e-12);
   EXPECT_NEAR(m.system(), diffraction * 2 / M_PI * m.jitter, 1e-9);
   const std::string csv = radchain::mtf_budget_csv(c);
-  EXPECT_NE(csv.find("frequency_mm-1,diffraction,pixel,jitter,smear,diffusion,wavefront,tdi,system\n"), std::string::npos);
+  EXPECT_NE(csv.find("frequency_mm-1,diffraction,pixel,jitter,smear,diffusion,wavefront,tdi,atmosphere,system\n"), std::string::npos);
   EXPECT_NE(csv.find("# Nyquist 1/(2p) = 62.5 mm-1"), std::string::npos) << csv.substr(0, 400);
+  // Turbulence of r0 = 10 cm on the 13.3 m focal length: exp(−3.44 (λ f' ν / r0)^(5/3)) at Nyquist (Fried 1966),
+  // in the criterion's system MTF and in the budget's curves alike.
+  radchain::Chain turbulent = radchain::load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/worldview-2-pan.toml",
+                                                    {{"criteria.iq.jitter_rms", "\"2 um\""}, {"criteria.iq.fried_parameter", "\"10 cm\""}});
+  const radchain::Report tr = turbulent.run();
+  const radchain::MtfBudgetCurves tc = radchain::mtf_budget_curves(tr);
+  const double atmosphere = std::exp(-3.44 * std::pow(lambda * 13.3 * nyquist / 0.10, 5.0 / 3.0));
+  EXPECT_NEAR(tc.components[100].atmosphere, atmosphere, 1e-12);
+  EXPECT_NEAR(*tr.value("criteria.iq.mtf_nyquist_system"), m.system() * atmosphere, 1e-12);
+  EXPECT_NEAR(tc.components[100].system(), m.system() * atmosphere, 1e-12);
+  EXPECT_LT(*tr.value("criteria.iq.rer"), *report.value("criteria.iq.rer"));
   // Kolobrodov's design has no budget.
   radchain::Chain kolobrodov =
       radchain::load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/kolobrodov-1996-ccd151-computed.toml");

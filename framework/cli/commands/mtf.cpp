@@ -34,11 +34,11 @@ int budget_command(const MtfCommand& options, const Report& report) {
   write_csv(options, mtf_budget_csv(curves));
   if (!options.plot.empty()) {
     std::vector<double> frequency_mm;
-    std::vector<std::vector<double>> columns(8);
+    std::vector<std::vector<double>> columns(9);
     for (std::size_t i = 0; i < curves.frequency_per_m.size(); ++i) {
       frequency_mm.push_back(curves.frequency_per_m[i] * 1e-3);
       const physics::MtfComponents& m = curves.components[i];
-      const double values[] = {m.diffraction, m.pixel, m.jitter, m.smear, m.diffusion, m.wavefront, m.tdi, m.system()};
+      const double values[] = {m.diffraction, m.pixel, m.jitter, m.smear, m.diffusion, m.wavefront, m.tdi, m.atmosphere, m.system()};
       for (std::size_t k = 0; k < columns.size(); ++k) columns[k].push_back(values[k]);
     }
     const physics::MtfComponents at_nyquist = physics::mtf_components(curves.budget, curves.nyquist_per_m);
@@ -50,7 +50,7 @@ int budget_command(const MtfCommand& options, const Report& report) {
                 "MTF", frequency_mm,
                 {{"diffraction", "", columns[0]}, {"pixel", "", columns[1]}, {"jitter", "", columns[2]},
                  {"smear", "", columns[3]}, {"diffusion", "", columns[4]}, {"wavefront", "", columns[5]},
-                 {"TDI", "", columns[6]}, {"system", "", columns[7]}},
+                 {"TDI", "", columns[6]}, {"atmosphere", "", columns[7]}, {"system", "", columns[8]}},
                 plot);
   }
   return report.all_passed() ? 0 : 1;

@@ -47,7 +47,8 @@ double optics_otf(const EarthSceneSetup& s, double nu_focal) {
       const physics::MtfBudget& b = s.budget;
       return physics::diffraction_mtf(nu_focal, b.wavelength_m, b.f_number, b.obscuration) *
              physics::wavefront_error_mtf(nu_focal, b.wavelength_m, b.f_number, b.wavefront_error_waves) *
-             physics::jitter_mtf(nu_focal, b.jitter_rms_m) * physics::diffusion_mtf(nu_focal, b.diffusion_rms_m);
+             physics::jitter_mtf(nu_focal, b.jitter_rms_m) * physics::diffusion_mtf(nu_focal, b.diffusion_rms_m) *
+             physics::turbulence_mtf(nu_focal, b.wavelength_m, b.focal_length_m, b.fried_parameter_m);
     }
     case OpticsMtf::none: break;
   }
@@ -431,6 +432,7 @@ Header earth_scene_header(const EarthSceneSetup& s, std::uint64_t seed) {
     number("WFE", s.budget.wavefront_error_waves, "[waves] rms wavefront error");
     number("TDISTAGE", s.budget.tdi_stages, "TDI stages (MTF)");
     number("TDIMIS", s.budget.tdi_mismatch, "TDI mismatch (pixels per stage)");
+    number("FRIEDR0", s.budget.fried_parameter_m * 100, "[cm] turbulence r0 (0: none)");
   }
   flag("MTFDET", s.detector_mtf, "detector element MTF applied");
   number("ELEMENT", s.element_m * 1e6, "[um] detector element V_D");

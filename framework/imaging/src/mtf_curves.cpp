@@ -83,6 +83,8 @@ physics::MtfBudget mtf_budget(const Report& report, std::string* criterion_name)
   b.wavefront_error_waves = need(criterion + ".wavefront_error");
   b.tdi_stages = need(criterion + ".tdi_stages");
   b.tdi_mismatch = need(criterion + ".tdi_mismatch");
+  b.focal_length_m = need(std::string(vocabulary::optics_focal_length.name));
+  b.fried_parameter_m = report.value(criterion + ".fried_parameter").value_or(0.0);
   if (criterion_name) *criterion_name = criterion;
   return b;
 }
@@ -106,16 +108,17 @@ std::string mtf_budget_csv(const MtfBudgetCurves& c) {
   const physics::MtfComponents at_nyquist = physics::mtf_components(b, c.nyquist_per_m);
   std::string out = fmt::format(
       "# MTF budget of {}: lambda = {:.4g} um, N = {:.4g}, obscuration = {:.4g}, p = {:.4g} um, jitter = {:.4g} um, "
-      "smear = {:.4g} um, diffusion = {:.4g} um, WFE = {:.4g} waves, TDI {:.4g} stages (mismatch {:.4g} px)\n"
+      "smear = {:.4g} um, diffusion = {:.4g} um, WFE = {:.4g} waves, TDI {:.4g} stages (mismatch {:.4g} px), "
+      "turbulence r0 = {:.4g} cm (0: none)\n"
       "# Nyquist 1/(2p) = {:.6g} mm-1: system MTF {:.6f} (diffraction {:.6f}, pixel {:.6f})\n"
-      "frequency_mm-1,diffraction,pixel,jitter,smear,diffusion,wavefront,tdi,system\n",
+      "frequency_mm-1,diffraction,pixel,jitter,smear,diffusion,wavefront,tdi,atmosphere,system\n",
       c.criterion, b.wavelength_m * 1e6, b.f_number, b.obscuration, b.pitch_m * 1e6, b.jitter_rms_m * 1e6,
       b.smear_m * 1e6, b.diffusion_rms_m * 1e6, b.wavefront_error_waves, b.tdi_stages, b.tdi_mismatch,
-      c.nyquist_per_m * 1e-3, at_nyquist.system(), at_nyquist.diffraction, at_nyquist.pixel);
+      b.fried_parameter_m * 100, c.nyquist_per_m * 1e-3, at_nyquist.system(), at_nyquist.diffraction, at_nyquist.pixel);
   for (std::size_t i = 0; i < c.frequency_per_m.size(); ++i) {
     const physics::MtfComponents& m = c.components[i];
-    out += fmt::format("{:.6g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", c.frequency_per_m[i] * 1e-3,
-                       m.diffraction, m.pixel, m.jitter, m.smear, m.diffusion, m.wavefront, m.tdi, m.system());
+    out += fmt::format("{:.6g},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", c.frequency_per_m[i] * 1e-3,
+                       m.diffraction, m.pixel, m.jitter, m.smear, m.diffusion, m.wavefront, m.tdi, m.atmosphere, m.system());
   }
   return out;
 }

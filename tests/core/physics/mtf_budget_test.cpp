@@ -50,6 +50,16 @@ TEST(MtfBudget, TdiSynchronisationIsADirichletKernel) {
   EXPECT_NEAR(tdi_synchronisation_mtf(nyq, 64, 0.01, p), linear_smear_mtf(nyq, 0.64 * p), 1e-4);
 }
 
+TEST(MtfBudget, TurbulenceIsFriedsLongExposureMtf) {
+  // exp(−3.44 (λ f' ν / r0)^(5/3)) (Fried 1966): at λ f' ν = r0 it is e^−3.44; doubling ν raises the exponent 2^(5/3).
+  const double lambda = 0.5e-6, f = 2.0, r0 = 0.1, nu = r0 / (lambda * f);
+  EXPECT_NEAR(turbulence_mtf(nu, lambda, f, r0), std::exp(-3.44), 1e-15);
+  EXPECT_NEAR(std::log(turbulence_mtf(2 * nu, lambda, f, r0)) / std::log(turbulence_mtf(nu, lambda, f, r0)), std::pow(2.0, 5.0 / 3.0),
+              1e-12);
+  EXPECT_DOUBLE_EQ(turbulence_mtf(nu, lambda, f, 0.0), 1.0);  // no turbulence term
+  EXPECT_DOUBLE_EQ(turbulence_mtf(0.0, lambda, f, r0), 1.0);
+}
+
 TEST(MtfBudget, ShiftedCopiesKeepTheirSign) {
   // N copies δ apart, summed directly as Σ_k exp(−2πiν(k − (N−1)/2)δ)/N (real for centred copies): the signed
   // kernel, negative past its first zero at ν = 1/(Nδ), e.g. 3×3 binning at 0.5/p.

@@ -186,6 +186,12 @@ double kolobrodov_system_element_ratio(double sinc_root, double contrast) {
 
 // ---- MTF budget (sources in mtf.hpp) ----------------------------------------------------------------------
 
+double turbulence_mtf(double frequency_per_m, double wavelength_m, double focal_length_m, double fried_parameter_m) {
+  if (!(fried_parameter_m > 0)) return 1.0;
+  const double x = wavelength_m * focal_length_m * std::abs(frequency_per_m) / fried_parameter_m;
+  return std::exp(-3.44 * std::pow(x, 5.0 / 3.0));  // Fried 1966, long exposure
+}
+
 double jitter_mtf(double frequency_per_m, double jitter_rms_m) {
   return std::exp(-2 * pi * pi * jitter_rms_m * jitter_rms_m * frequency_per_m * frequency_per_m);
 }

@@ -96,6 +96,11 @@ inline constexpr double kolobrodov_system_element_ratio_printed = 1.49;
 // Digital Cameras, SPIE TT92 (2010), ch. 5-6; G. C. Holst, Electro-Optical Imaging System Performance, 5th ed.
 // (2008), ch. 10). Diffraction with central obscuration and the pixel aperture are above.
 
+// Atmospheric turbulence, long exposure: MTF = exp(−3.44 (λ f' ν / r₀)^(5/3)), r₀ the Fried parameter of the line
+// of sight at the pupil, f' ν the angular frequency in cycles per radian (D. L. Fried, "Optical resolution through
+// a randomly inhomogeneous medium for very long and very short exposures", JOSA 56 (1966) 1372; J. W. Goodman,
+// Statistical Optics (1985) §8.6; Fiete 2010 ch. 5). r₀ ≤ 0: no turbulence (1).
+double turbulence_mtf(double frequency_per_m, double wavelength_m, double focal_length_m, double fried_parameter_m);
 // Gaussian jitter of rms σ on the focal plane (random high-frequency line-of-sight motion):
 // MTF = exp(−2π² σ² ν²) (Fiete 2010 ch. 6; Holst 2008 ch. 10).
 double jitter_mtf(double frequency_per_m, double jitter_rms_m);

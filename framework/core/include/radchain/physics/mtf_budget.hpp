@@ -10,17 +10,18 @@ struct MtfBudget {
   double wavelength_m = 0, f_number = 0, obscuration = 0, pitch_m = 0;
   double jitter_rms_m = 0, smear_m = 0, diffusion_rms_m = 0, wavefront_error_waves = 0;
   double tdi_stages = 1, tdi_mismatch = 0;
+  double focal_length_m = 0, fried_parameter_m = 0;  // atmospheric turbulence (r₀ = 0: none)
 };
 
 struct MtfComponents {
-  double diffraction = 1, pixel = 1, jitter = 1, smear = 1, diffusion = 1, wavefront = 1, tdi = 1;
-  double others() const { return jitter * smear * diffusion * wavefront * tdi; }
+  double diffraction = 1, pixel = 1, jitter = 1, smear = 1, diffusion = 1, wavefront = 1, tdi = 1, atmosphere = 1;
+  double others() const { return jitter * smear * diffusion * wavefront * tdi * atmosphere; }
   double system() const { return diffraction * pixel * others(); }
 };
 
 // Every component at focal-plane frequency ν (cycles/m): annular-pupil diffraction (O'Neill 1956), the pixel
-// aperture |sinc(π p ν)|, Gaussian jitter and diffusion, linear smear, wavefront error (Shannon's ATF) and TDI
-// synchronisation (physics/mtf.hpp gives each one's source).
+// aperture |sinc(π p ν)|, Gaussian jitter and diffusion, linear smear, wavefront error (Shannon's ATF), TDI
+// synchronisation and long-exposure atmospheric turbulence (physics/mtf.hpp gives each one's source).
 inline MtfComponents mtf_components(const MtfBudget& b, double nu) {
   MtfComponents m;
   m.diffraction = diffraction_mtf(nu, b.wavelength_m, b.f_number, b.obscuration);
@@ -30,6 +31,7 @@ inline MtfComponents mtf_components(const MtfBudget& b, double nu) {
   m.diffusion = diffusion_mtf(nu, b.diffusion_rms_m);
   m.wavefront = wavefront_error_mtf(nu, b.wavelength_m, b.f_number, b.wavefront_error_waves);
   m.tdi = tdi_synchronisation_mtf(nu, b.tdi_stages, b.tdi_mismatch, b.pitch_m);
+  m.atmosphere = turbulence_mtf(nu, b.wavelength_m, b.focal_length_m, b.fried_parameter_m);
   return m;
 }
 
