@@ -43,7 +43,7 @@ const Schema& schema() {
       number("tdi_mismatch", "0.01").fallback("0").at_least(0).below(1)
           .described("TDI line-rate mismatch per stage, as a fraction of a pixel"),
       quantity("fried_parameter", "m", "0.5 m").above(0)
-          .described("Fried parameter r0 of the line of sight at the pupil: long-exposure turbulence MTF (default none)"),
+          .described("Fried parameter r0 of the line of sight at the pupil, at the MTF wavelength: long-exposure turbulence MTF (default none)"),
       number("rer", "0.5").above(0).at_most(1.5).described("measured relative edge response (replaces the MTF budget's)"),
       number("snr", "50").above(0).described("SNR of the reference target (default: the detector's detector.snr)"),
       number("noise_gain", "1").fallback("1").above(0).described("GIQE-4 noise gain G of the processing (1: none)"),

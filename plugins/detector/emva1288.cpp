@@ -250,6 +250,9 @@ class Emva1288 final : public Stage {
     id_gain_ = c.declare(vocabulary::detector_system_gain, "input K", "DN/e-");
     id_tdi_ = c.declare(vocabulary::detector_tdi_stages, "input N_tdi");
     id_exposures_ = c.declare(vocabulary::detector_exposures, "input M");
+    id_psf_weighted_ = c.declare(vocabulary::detector_psf_weighted, "photometry = \"psf\" (1) or a window or circle (0)");
+    id_prnu_ = c.declare(vocabulary::detector_prnu, "input s_g", "%");
+    id_dsnu_ = c.declare(vocabulary::detector_dsnu, "input σ_o", "e-");
     id_sky_ = c.declare(vocabulary::detector_sky_electrons_per_pixel,
                         "B = N_tdi b² t p² ∫ E'_λ,sky η λ/(hc) dλ (étendue) per binned pixel and frame", "e-");
     id_peak_fraction_ = c.declare("peak_pixel_fraction", "1", "fraction of the point image in the brightest native pixel");
@@ -376,6 +379,9 @@ class Emva1288 final : public Stage {
     a.set(id_gain_, gain);
     a.set(id_tdi_, tdi);
     a.set(id_exposures_, m);
+    a.set(id_psf_weighted_, psf_photometry_ ? 1.0 : 0.0);
+    a.set(id_prnu_, *prnu_);
+    a.set(id_dsnu_, *dsnu_);
     a.set(id_peak_fraction_, peak_fraction);
     a.set(id_psf_fwhm_, fwhm);
     if (circle_photometry_) a.set(id_aperture_radius_, radius_m / binned);
@@ -557,6 +563,7 @@ class Emva1288 final : public Stage {
   const double *reference_radiance_, *reference_reflectance_;
   double photon_rate_per_scale_ = 0, ab_electrons_per_m2_s_ = 0, flat_photon_integral_ = 0, path_photon_rate_ = 0;
   ResultId id_path_electrons_{}, id_binning_{}, id_exposures_{}, id_prnu_{}, id_dsnu_{};
+  ResultId id_psf_weighted_{};
   std::optional<ResultId> reflectance_, id_nedrho_;
   ResultId id_pitch_{}, id_scene_radiance_{}, id_reference_radiance_{}, id_reference_signal_{}, id_reference_snr_{},
       id_nedl_{}, id_saturation_radiance_{}, id_solid_angle_{}, id_etendue_{}, id_responsivity_{}, id_qe_integral_{},
@@ -594,7 +601,8 @@ RADCHAIN_PLUGIN(Emva1288, {
                   vocabulary::detector_trailing_loss, vocabulary::detector_psf_fwhm, vocabulary::detector_adc_bits,
                   vocabulary::detector_dark_rate, vocabulary::detector_read_noise_per_pixel,
                   vocabulary::detector_path_radiance_electrons, vocabulary::detector_binning,
-                  vocabulary::detector_exposures, vocabulary::detector_prnu, vocabulary::detector_dsnu},
+                  vocabulary::detector_exposures, vocabulary::detector_prnu, vocabulary::detector_dsnu,
+                  vocabulary::detector_psf_weighted},
     .needs = {if_present(vocabulary::optics_psf_wavelength), if_present(vocabulary::optics_gaussian_fwhm),
               if_present(vocabulary::optics_f_number), if_present(vocabulary::optics_obscuration),
               if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_aperture),

@@ -73,8 +73,6 @@ struct BadOption {
   std::string arguments, message;
 };
 
-// A scene file that cannot be read (not an image, a truncated FITS, missing) is input refused at --scene: one
-// line, exit 2, no output — not an internal error.
 // PSF-weighted photometry (emva1288 photometry = "psf", the Rubin files): validate measures the matched filter on a
 // still target, not a square window that holds only part of the image (it reported FAIL on every Rubin file).
 TEST(RenderCli, PsfPhotometryValidatesWithTheMatchedFilter) {
@@ -84,8 +82,12 @@ TEST(RenderCli, PsfPhotometryValidatesWithTheMatchedFilter) {
   EXPECT_NE(v.out.find("PSF-weighted photometry at the limiting magnitude"), std::string::npos) << v.out;
   EXPECT_NE(v.out.find("ok   matched-filter SNR"), std::string::npos) << v.out;
   EXPECT_EQ(v.out.find("window signal"), std::string::npos) << v.out;
-  // A faint frame (Roman F062 at magnitude 25: 4.3 e- under 5 e- read noise, 1 DN/e-) without an ADC pedestal clips
-  // its noise at 0 DN: the checks fail and say why; with --offset they pass.
+  // The bundled 30 s GEO streak (2255 pixels, wider than the default frame) validates on its widened frame.
+  const CliResult streak = run_cli(scratch, "validate '" + source_dir + "/examples/rubin-geo-streak.toml' --trials 100 --size 64");
+  EXPECT_EQ(streak.exit_code, 0) << streak.out << streak.err;
+  EXPECT_NE(streak.out.find("streak of 2255"), std::string::npos) << streak.out;
+  // A faint frame (Roman F062 at magnitude 25: 4.3 e- under 5 e- read noise, 1 DN/e-, a 1×1 window) without an ADC
+  // pedestal clips its noise at 0 DN: the checks fail and say why; with --offset they pass.
   const std::string roman = "validate '" + source_dir + "/sensors/roman-wfi-f062-zero-point.toml' --trials 2000 --size 64";
   const CliResult clipped = run_cli(scratch, roman);
   EXPECT_EQ(clipped.exit_code, 1) << clipped.out << clipped.err;
@@ -94,6 +96,8 @@ TEST(RenderCli, PsfPhotometryValidatesWithTheMatchedFilter) {
   EXPECT_EQ(pedestal.exit_code, 0) << pedestal.out << pedestal.err;
 }
 
+// A scene file that cannot be read (not an image, a truncated FITS, missing) is input refused at --scene: one
+// line, exit 2, no output — not an internal error.
 TEST(RenderCli, UnreadableSceneIsBadInput) {
   Scratch scratch;
   const std::string fits = (scratch / "garbage.fits").string(), png = (scratch / "garbage.png").string();

@@ -269,7 +269,9 @@ double StreakCheck::snr_loss_sigma() const {
   return 2.5 / std::numbers::ln10 * std::hypot(still.sigma / still.measured, streak.sigma / streak.measured);
 }
 
-bool PsfPhotometryCheck::passed(double max_z) const { return std::abs(still.z()) <= max_z && chain_agrees(); }
+bool PsfPhotometryCheck::passed(double max_z) const {
+  return std::abs(still.z()) <= max_z && (fixed_pattern || chain_agrees());
+}
 
 bool StreakCheck::passed(double max_z) const {
   return std::abs(streak.z()) <= max_z && std::abs(still.z()) <= max_z &&
@@ -332,19 +334,15 @@ MatchedFilter matched_filter(Chain& chain, const Report& report, const SpaceFram
 }  // namespace
 
 bool psf_weighted_photometry(const Report& report) {
-  const auto neff = detail::result(report, vocabulary::detector_noise_equivalent_area);
-  const auto pixels = detail::result(report, vocabulary::detector_window_pixel_count);
-  const auto ensquared = detail::result(report, vocabulary::detector_ensquared_energy);
-  // emva1288's photometry = "psf": the photometric aperture is n_eff pixels holding all of the image.
-  return neff && pixels && ensquared && *ensquared == 1.0 && std::abs(*pixels - *neff) <= 1e-12 * *neff;
+  return detail::result(report, vocabulary::detector_psf_weighted).value_or(0.0) == 1.0;
 }
 
 PsfPhotometryCheck check_psf_photometry(Chain& chain, const Report& report, SpaceFrameOptions frame, const StreakCheckOptions& o) {
   if (o.trials < 10) detail::refuse(chain.sensor_file, "trials", "at least 10 frames");
   clear_sources(frame);
   const SpaceFrameSetup geometry = space_frame_setup(chain, report, frame);
-  // Room for the PSF's light: 8σ of a Gaussian, 8 FWHM (1.028 λN) of an Airy core, nothing for the pixel PSF
-  // (all of the image in one pixel, where the matched filter is that pixel).
+  // Room for the PSF: 8σ of a Gaussian; 8 FWHM (1.028 λN) of an Airy core (≈ 2.5 % of a clear pupil's light lies
+  // beyond: the matched filter stays unbiased, its weights are the frame's own); nothing for the pixel PSF.
   double reach_px = 0;
   if (geometry.psf == PsfModel::gaussian) reach_px = 8.0 * geometry.gaussian_fwhm_m / (2.0 * std::sqrt(2.0 * std::numbers::ln2));
   else if (geometry.psf == PsfModel::airy) reach_px = 8.0 * 1.028 * geometry.psf_wavelength_m * geometry.f_number;
@@ -362,6 +360,8 @@ PsfPhotometryCheck check_psf_photometry(Chain& chain, const Report& report, Spac
   check.neff = still.neff;
   check.signal_electrons = still.signal;
   check.chain_form_snr = still.chain_form_snr;
+  check.fixed_pattern = detail::result(report, vocabulary::detector_prnu).value_or(0.0) > 0 ||
+                        detail::result(report, vocabulary::detector_dsnu).value_or(0.0) > 0;
   return check;
 }
 

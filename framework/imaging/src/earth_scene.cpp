@@ -253,7 +253,8 @@ Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
   // Mirror padding wide enough for the PSF (detector element + ten Airy radii, on the ground).
   const physics::MtfBudget& b = s.budget;
   const double budget_blur = s.optics == OpticsMtf::budget
-                                 ? b.smear_m + b.tdi_mismatch * b.tdi_stages * b.pitch_m + 4.0 * (b.jitter_rms_m + b.diffusion_rms_m)
+                                 ? b.smear_m + b.tdi_mismatch * b.tdi_stages * b.pitch_m + 4.0 * (b.jitter_rms_m + b.diffusion_rms_m) +
+                                       (b.fried_parameter_m > 0 ? 4.0 * b.wavelength_m * b.focal_length_m / b.fried_parameter_m : 0.0)
                                  : 0.0;
   const double psf_ground = (s.element_m + 10.0 * s.wavelength_m * s.f_number + budget_blur) / s.ground_to_focal();
   const auto margin = static_cast<std::int64_t>(std::ceil(2.0 * psf_ground / s.input_sampling_m)) + 4;

@@ -194,6 +194,9 @@ inline constexpr Term detector_binning{"detector.binning", "1", "pixels binned p
 inline constexpr Term detector_exposures{"detector.exposures", "1", "frames co-added M"};
 inline constexpr Term detector_prnu{"detector.prnu", "1", "photo-response non-uniformity s_g (EMVA 1288 §2.4), a fraction"};
 inline constexpr Term detector_dsnu{"detector.dsnu", "electron", "dark-signal non-uniformity σ_o of one native pixel (EMVA 1288 §2.4)"};
+// How a point image is counted, for validate: PSF-weighted (the whole image over n_eff pixels) or an aperture
+inline constexpr Term detector_psf_weighted{"detector.psf_weighted", "1",
+                                            "1: PSF-weighted photometry (all of the image over n_eff pixels); 0: a window or circle"};
 
 // Every term, for look-ups by name (describe, the check that a plugin does not declare a term as a plain string).
 inline constexpr std::array all{
@@ -218,7 +221,7 @@ inline constexpr std::array all{
     target_reflectance, detector_scene_radiance, detector_reference_radiance, detector_reference_signal_electrons,
     detector_snr_at_reference, detector_noise_equivalent_radiance, detector_noise_equivalent_reflectance,
     detector_saturation_radiance, detector_path_radiance_electrons, detector_binning, detector_exposures,
-    detector_prnu, detector_dsnu,
+    detector_prnu, detector_dsnu, detector_psf_weighted,
     // Datasheet detectors and telescopes (issue 13)
     detector_peak_pixel_fill, detector_saturation_capacity, detector_peak_pixel_electrons,
     detector_noise_equivalent_area, detector_system_gain, detector_tdi_stages, target_zero_point_photon_rate,

@@ -174,10 +174,11 @@ struct PsfPhotometryCheck {
   long trials = 0;
   StreakSnr still;
   double tolerance = 1e-3;
+  bool fixed_pattern = false;  // the chain counts DSNU/PRNU, which point-target frames do not render: not compared
   bool chain_agrees() const { return std::abs(chain_form_snr / chain_snr - 1.0) <= tolerance; }
   bool passed(double max_z = 4.0) const;  // measured within max_z σ of the renderer's law; the chain's form agrees
 };
-// True when the report's photometry is PSF-weighted (n_eff pixels, all of the image).
+// True when the detector says its photometry is PSF-weighted (detector.psf_weighted = 1).
 bool psf_weighted_photometry(const Report& report);
 PsfPhotometryCheck check_psf_photometry(Chain& chain, const Report& report, SpaceFrameOptions frame,
                                         const StreakCheckOptions& options = {});
