@@ -24,28 +24,38 @@ int validate_command(const ValidateCommand& c) {
   // A point-target frame without a pedestal whose dark level lies within 3σ of the ADC's lowest step (−½ DN):
   // its noise is clipped at 0 DN, which none of the laws model. From the report: dark + sky per pixel, read noise, K.
   bool clipped = false;
-  auto note_clipping = [&](const SpaceFrameOptions& frame) {
+  // The frame options every point-target check starts from (geometry options, the pedestal), and the clipping test.
+  auto point_frame = [&] {
+    SpaceFrameOptions frame;
+    apply_frame_geometry(frame, v);
+    frame.offset_dn = v.get("--offset");
     auto value = [&](const Term& term) { return report.value(std::string(term.name)).value_or(0.0); };
     const double level = value(vocabulary::detector_dark_rate) * value(vocabulary::detector_integration_time) +
                          value(vocabulary::detector_sky_electrons_per_pixel);
     const double read = value(vocabulary::detector_read_noise_per_pixel), gain = value(vocabulary::detector_system_gain);
     const double half_step = gain > 0 ? 0.5 / gain : 0.0;
     clipped = frame.offset_dn == 0 && level + half_step < 3.0 * std::sqrt(level + read * read);
+    return frame;
+  };
+  auto matched_filter_options = [&] {
+    StreakCheckOptions o;
+    o.trials = v.integer("--trials");
+    o.seed = c.seed;
+    return o;
   };
   auto verdict = [&](bool passed) {
     ok = ok && passed;
     return passed ? "ok  " : "FAIL";
   };
+  auto space_flat_field = [&](const SpaceFrameOptions& frame) {
+    const FlatFieldCheck flat = check_space_flat_field(chain, report, frame, size, c.seed);
+    fmt::print("  {} flat field: measured SNR {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.5g} vs {:.5g} e-\n",
+               verdict(flat.passed(max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
+               flat.measured_noise, flat.predicted_noise);
+  };
   if (is_point_target_sensor(chain) && report.value(std::string(vocabulary::detector_target_streak_pixels.name)).value_or(0.0) > 0) {
     // A moving target: PSF-weighted photometry along its streak (a square detection window does not apply).
-    SpaceFrameOptions frame;
-    apply_frame_geometry(frame, v);
-    frame.offset_dn = v.get("--offset");
-    note_clipping(frame);
-    StreakCheckOptions o;
-    o.trials = v.integer("--trials");
-    o.seed = c.seed;
-    const StreakCheck check = check_streak(chain, report, frame, o);
+    const StreakCheck check = check_streak(chain, report, point_frame(), matched_filter_options());
     fmt::print("{}: streak of {:.4g} pixels at the limiting magnitude {:.4f} (S = {:.4g} e-, n_eff {:.4g} px, still {:.4g} px; "
                "{} frames)\n",
                c.sensor.sensor, check.streak_px, check.magnitude, check.signal_electrons, check.neff, check.static_neff, check.trials);
@@ -59,14 +69,8 @@ int validate_command(const ValidateCommand& c) {
                check.measured_snr_loss(), check.snr_loss_sigma(), check.predicted_snr_loss(), check.chain_trailing_loss);
   } else if (is_point_target_sensor(chain) && psf_weighted_photometry(report)) {
     // PSF-weighted photometry of a still target: the matched filter, not a square window.
-    SpaceFrameOptions frame;
-    apply_frame_geometry(frame, v);
-    frame.offset_dn = v.get("--offset");
-    note_clipping(frame);
-    StreakCheckOptions o;
-    o.trials = v.integer("--trials");
-    o.seed = c.seed;
-    const PsfPhotometryCheck check = check_psf_photometry(chain, report, frame, o);
+    const SpaceFrameOptions frame = point_frame();
+    const PsfPhotometryCheck check = check_psf_photometry(chain, report, frame, matched_filter_options());
     fmt::print("{}: PSF-weighted photometry at the limiting magnitude {:.4f} (S = {:.4g} e-, n_eff {:.4g} px rendered, {:.4g} "
                "chain; {} frames)\n",
                c.sensor.sensor, check.magnitude, check.signal_electrons, check.neff, check.chain_neff, check.trials);
@@ -83,15 +87,9 @@ int validate_command(const ValidateCommand& c) {
                  verdict(check.chain_agrees()), check.chain_form_snr, check.chain_snr,
                  100 * (check.chain_form_snr / check.chain_snr - 1), 100 * check.tolerance,
                  100 * (check.still.predicted / check.chain_form_snr - 1));
-    const FlatFieldCheck flat = check_space_flat_field(chain, report, frame, size, c.seed);
-    fmt::print("  {} flat field: measured SNR {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.5g} vs {:.5g} e-\n",
-               verdict(flat.passed(max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
-               flat.measured_noise, flat.predicted_noise);
+    space_flat_field(frame);
   } else if (is_point_target_sensor(chain)) {
-    SpaceFrameOptions frame;
-    apply_frame_geometry(frame, v);
-    frame.offset_dn = v.get("--offset");
-    note_clipping(frame);
+    const SpaceFrameOptions frame = point_frame();
     DetectionCheckOptions d;
     d.trials = v.integer("--trials");
     d.seed = c.seed;
@@ -108,10 +106,7 @@ int validate_command(const ValidateCommand& c) {
       fmt::print("  {} {} measured {:.6f} ({} of {}), Gaussian criterion {:.6f} (z = {:+.2f}), renderer's exact law {:.6f} (z = {:+.2f})\n",
                  verdict(std::abs(rate.z_predicted()) <= max_z), name, rate.measured, rate.count, rate.trials, rate.predicted,
                  rate.z_predicted(), rate.exact, rate.z_exact());
-    const FlatFieldCheck flat = check_space_flat_field(chain, report, frame, size, c.seed);
-    fmt::print("  {} flat field: measured SNR {:.5g} ± {:.2g}, budget with the ADC {:.5g}, chain {:.5g}; noise {:.5g} vs {:.5g} e-\n",
-               verdict(flat.passed(max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
-               flat.measured_noise, flat.predicted_noise);
+    space_flat_field(frame);
   } else {
     EarthSceneOptions scene;
     scene.offset_dn = v.get("--offset");
