@@ -62,8 +62,8 @@ class SnrThreshold final : public LaneStage<SnrThreshold> {
     const V snr = a.value(snr_);
     const V margin = snr / t - 1.0;
     a.set(id_margin_, margin);
+    a.set(id_threshold_, t);  // essential: the closed-form solve reads T (solver.cpp)
     if (!a.full_detail()) return;
-    a.set(id_threshold_, t);
     // At a solved limit the margin is zero to rounding; 1e-9 keeps that point on the detected side.
     a.set(id_detected_, indicator(margin >= -1e-9));
     if (with_false_alarm_) {

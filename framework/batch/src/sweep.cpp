@@ -320,6 +320,9 @@ SweepWorker::SweepWorker(const Sweep& sweep)
   index_.resize(axes_.size());
   lanes_ = chain_.solves.size() <= 1 && (chain_.solves.empty() || chain_.lanes_can_solve());
   for (const ParameterRef& a : axes_) lanes_ = lanes_ && !a.spectral();
+  // Only solved values read (limiting magnitudes): the evaluation at the roots needs no noise breakdown.
+  if (std::all_of(columns_.begin(), columns_.end(), [](const Column& c) { return c.solved; }))
+    lane_outcome_.final_detail = Detail::essential;
 }
 
 void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, double* out, char* ok) {
@@ -333,7 +336,8 @@ void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, d
   }
   const auto& axes = sweep_.axes();
   // Each axis's value per lane; a short group repeats its last point in the unused lanes.
-  std::vector<Lanes> values(axes.size());
+  std::vector<Lanes>& values = lane_values_;
+  values.resize(axes.size());
   for (int lane = 0; lane < lane_count; ++lane) {
     const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(lane), count - 1);
     std::size_t point = points[k];
@@ -342,8 +346,9 @@ void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, d
       point /= axes[a].steps;
     }
     for (std::size_t a = 0; a < axes.size(); ++a) {
-      values[a](lane) = axes[a].value_si(index_[a]);
-      if (static_cast<std::size_t>(lane) < count) out[k * n_columns + a] = axes[a].value(index_[a]);
+      const double v = axes[a].value(index_[a]);
+      values[a](lane) = v * axes[a].to_si;  // (value_si)
+      if (static_cast<std::size_t>(lane) < count) out[k * n_columns + a] = v;
     }
   }
   chain_.clear_lanes();

@@ -48,6 +48,7 @@ constexpr double closed_form_tolerance = 1e-12;
 struct Sample {
   double x = 0, ratio = 0;            // the unknown; 1 + margin
   double signal = 0, variance = 0;    // noise_equation: S and n² (electrons)
+  double threshold = 0;               // noise_equation: the criterion's T where published (else 0)
 };
 
 // ln(u(x1)/u(x0)) for the unknown's variable u: x itself (power_law), or the flux ratio 10^(−0.4 x) (magnitude).
@@ -92,6 +93,29 @@ double closed_form_root(InverseForm form, Scaling scaling, const Sample& a, cons
   return from_log_variable(scaling, a.x, std::log(signal / a.signal) / k);
 }
 
+// The root from the faint bracket end alone, where the unknown is a magnitude and the criterion is the noise
+// equation: through stages linear in the flux the signal is S ∝ u = 10^(−0.4 x) (k = 1), and a detector counting
+// Poisson electrons has n² = S + c (b = 1), so the criterion's T and one end's c = n² − S give the root
+// x = x_end − 2.5 log10(S*/S_end) with S* = (T² + √(T⁴ + 4T²c))/2. The faint end (largest magnitude), because at
+// the bright one c = n² − S cancels (S ≫ c leaves margins of ~1e-11 at the root); T is the criterion's own, since
+// rebuilding it from the margin at the faint end (1 + margin ≈ 1e-4) loses as many digits. Nothing here is assumed unchecked: the margin at
+// the root must be zero to 1e-12, as for the two-end form, or the upper end is evaluated and the two-end form (or
+// the bracketing solver) takes over. NaN when the end does not fit the form.
+double closed_form_root_from_one_end(double x, double signal, double variance, double threshold) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  if (!(signal > 0 && variance > 0 && threshold > 0)) return nan;
+  const double t2 = threshold * threshold;
+  const double discriminant = t2 * t2 + 4.0 * t2 * (variance - signal);
+  if (!(discriminant >= 0)) return nan;
+  const double root_signal = 0.5 * (t2 + std::sqrt(discriminant));
+  if (!(root_signal > 0)) return nan;
+  return x - 2.5 * std::log10(root_signal / signal);
+}
+
+bool one_end_applies(InverseForm form, ResultId threshold, Scaling scaling) {
+  return form == InverseForm::noise_equation && threshold != SIZE_MAX && scaling == Scaling::magnitude;
+}
+
 std::string stage_name(const StageSlot& s) { return fmt::format("{} (plugin \"{}\")", s.section, s.plugin); }
 
 }  // namespace
@@ -117,6 +141,7 @@ Chain::Inversion Chain::inversion_for(const ParameterRef& unknown, const std::st
     const auto noise = results_.find(vocabulary::detector_noise_electrons.name);
     if (signal && noise) inversion.signal = *signal, inversion.noise = *noise;
     else inversion.form = InverseForm::power_law;  // no noise budget published: the SNR itself as c·u^k
+    if (const auto threshold = results_.find(vocabulary::criterion_threshold.in_criterion(criterion))) inversion.threshold = *threshold;
   }
   return inversion;
 }
@@ -169,9 +194,28 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
       if (inversion.form == InverseForm::noise_equation) {
         const double n = results_.value(inversion.noise);
         s.signal = results_.value(inversion.signal), s.variance = n * n;
+        if (inversion.threshold != SIZE_MAX) s.threshold = results_.value(inversion.threshold);
       }
       return s;
     };
+    if (solver == SolverChoice::automatic && one_end_applies(inversion.form, inversion.threshold, resolved.unknown.scaling())) {
+      const double faint = std::max(spec.lo, spec.hi);
+      const double f_faint = f(faint);
+      const Sample at = sample(faint);
+      const double x = f_faint != 0 && !std::isnan(f_faint)
+                           ? closed_form_root_from_one_end(faint, at.signal, at.variance, at.threshold)
+                           : std::numeric_limits<double>::quiet_NaN();
+      if (x >= std::min(spec.lo, spec.hi) && x <= std::max(spec.lo, spec.hi)) {
+        set_unknown(x, check_detail);
+        ++outcome.iterations;
+        if (std::abs(results_.value(margins[k])) <= closed_form_tolerance) {
+          final_evaluated = check_detail == Detail::full;
+          outcome.roots.emplace_back(spec.criteria[k], x);
+          methods.emplace_back("closed form (noise equation)", "");
+          continue;
+        }
+      }
+    }
     const double f_lo = f(spec.lo);
     const Sample at_lo = sample(spec.lo);
     const double f_hi = f(spec.hi);
@@ -277,12 +321,12 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
     if (outcome.converged[lane]) outcome.converged[lane] = false, outcome.message[lane] = std::move(message);
   };
 
-  std::vector<Lanes> roots(n_criteria);
+  std::vector<Lanes>& roots = outcome.criterion_roots;
+  roots.resize(n_criteria);
   for (std::size_t k = 0; k < n_criteria; ++k) {
     const ResultId id = resolved.margins[k];
     const Inversion& inversion = resolved.inversions[k];
     const bool try_closed_form = solver == SolverChoice::automatic && inversion.form != InverseForm::none;
-    std::array<Sample, lane_count> at_lo, at_hi;
     auto samples = [&](std::array<Sample, lane_count>& out, const Lanes& x) {
       if (!try_closed_form) return;
       const Lanes& m = lane_result(id);
@@ -290,11 +334,48 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
       if (inversion.form != InverseForm::noise_equation) return;
       const Lanes &s = lane_result(inversion.signal), &n = lane_result(inversion.noise);
       for (int i = 0; i < lane_count; ++i) out[i].signal = s(i), out[i].variance = n(i) * n(i);
+      if (inversion.threshold == SIZE_MAX) return;
+      const Lanes& t = lane_result(inversion.threshold);
+      for (int i = 0; i < lane_count; ++i) out[i].threshold = t(i);
     };
     // Dekker's method per lane (Dekker 1969; Brent 1973 ch. 4): b the best end, a the contrapoint, c the previous
     // b. A secant step through b and c when it falls between b and the midpoint, else bisection; never a step
     // below the tolerance, so the bracket closes from both sides.
     Lanes a = constant_lanes(spec.lo), b = constant_lanes(spec.hi);
+    Lanes& root = roots[k];
+    // Lanes whose root the faint end alone gave and the check at the root confirmed (as solve()).
+    std::array<bool, lane_count> settled{};
+    if (try_closed_form && one_end_applies(inversion.form, inversion.threshold, resolved.unknown.scaling())) {
+      const double faint = std::max(spec.lo, spec.hi);
+      margins_at(constant_lanes(faint));
+      const Lanes &m = lane_result(id), &s = lane_result(inversion.signal), &n = lane_result(inversion.noise),
+                  &t = lane_result(inversion.threshold);
+      Lanes x = constant_lanes(faint);
+      std::array<bool, lane_count> candidate{};
+      bool any = false;
+      for (int i = 0; i < lane_count; ++i) {
+        if (std::isnan(m(i)) || m(i) == 0) continue;  // (as the bracket ends: NaN fails, zero is the root)
+        const double xi = closed_form_root_from_one_end(faint, s(i), n(i) * n(i), t(i));
+        candidate[i] = xi >= std::min(spec.lo, spec.hi) && xi <= faint;
+        if (candidate[i]) x(i) = xi, any = true;
+      }
+      if (any) {
+        set_lanes(resolved.unknown, x);
+        evaluate_lanes(n_criteria == 1 ? outcome.final_detail : Detail::essential);
+        ++outcome.passes;
+        const Lanes& m = lane_result(id);
+        for (int i = 0; i < lane_count; ++i)
+          if (candidate[i] && std::abs(m(i)) <= closed_form_tolerance) root(i) = x(i), settled[i] = true, ++outcome.closed_form;
+        if (std::all_of(settled.begin(), settled.end(), [](bool s) { return s; })) {
+          if (n_criteria == 1) {  // every lane was last evaluated at its root, in the final detail
+            outcome.value = root;
+            return;
+          }
+          continue;
+        }
+      }
+    }
+    std::array<Sample, lane_count> at_lo, at_hi;
     margins_at(a);
     Lanes f_a = solver_margins(id);
     const Lanes margin_lo = lane_result(id);
@@ -303,9 +384,9 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
     Lanes f_b = solver_margins(id);
     samples(at_hi, b);
     Lanes c = a, f_c = f_a;
-    Lanes& root = roots[k];
     std::array<bool, lane_count> active{};
     for (int i = 0; i < lane_count; ++i) {
+      if (settled[i]) continue;
       root(i) = spec.lo;
       if (std::isnan(f_a(i)) || std::isnan(f_b(i))) {
         fail(i, fmt::format("criterion \"{}\": the margin is not a number at the bracket ends", spec.criteria[k]));
@@ -332,7 +413,7 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
       }
       if (any) {
         set_lanes(resolved.unknown, x);
-        evaluate_lanes(n_criteria == 1 ? Detail::full : Detail::essential);
+        evaluate_lanes(n_criteria == 1 ? outcome.final_detail : Detail::essential);
         ++outcome.passes;
         const Lanes& m = lane_result(id);
         for (int i = 0; i < lane_count; ++i)
@@ -340,7 +421,7 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
         final_evaluated = n_criteria == 1 && std::none_of(active.begin(), active.end(), [](bool a) { return a; });
       }
     }
-    if (final_evaluated) {  // every lane's root is where the lanes were last evaluated, in full
+    if (final_evaluated) {  // every lane's root is where the lanes were last evaluated, in the final detail
       outcome.value = root;
       for (int i = 0; i < lane_count; ++i)
         if (!outcome.converged[i]) outcome.value(i) = std::numeric_limits<double>::quiet_NaN();
@@ -408,7 +489,7 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
   for (int i = 0; i < lane_count; ++i)
     if (!outcome.converged[i]) outcome.value(i) = std::numeric_limits<double>::quiet_NaN();
   set_lanes(resolved.unknown, chosen_root);
-  evaluate_lanes(Detail::full);
+  evaluate_lanes(outcome.final_detail);
   ++outcome.passes;
 }
 

@@ -113,6 +113,10 @@ struct LaneSolveOutcome {
   std::array<std::string, lane_count> message;  // why not, where not
   int passes = 0;                               // lane evaluations
   int closed_form = 0;                          // lanes whose root came from the closed form
+  // Input: what the last evaluation at the roots computes. Detail::essential when only the solved values are read
+  // (a sweep of limiting magnitudes): then no noise term's square root is taken for nothing.
+  Detail final_detail = Detail::full;
+  std::vector<Lanes> criterion_roots;           // scratch, reused between groups (no allocation per group)
 };
 
 struct ExpectationOutcome {
@@ -245,6 +249,7 @@ class Chain {
     InverseForm form = InverseForm::none;
     std::string why_not;
     ResultId signal = SIZE_MAX, noise = SIZE_MAX;  // noise_equation: the detector's S and n
+    ResultId threshold = SIZE_MAX;                 // noise_equation: the criterion's T, where it publishes one
   };
   struct ResolvedSolve {
     ParameterRef unknown;

@@ -19,9 +19,14 @@ double magnitude_ratio(double magnitude, double sun_magnitude) {
 }
 // Per lane with glibc's exp (dispatched to its FMA form at run time): faster than Eigen's SSE2 packet exp, and the
 // same bits as the scalar form.
+// Equal neighbours (a solver's pass at one bracket end for every lane) share one exponential.
 Lanes magnitude_ratio(const Lanes& magnitude, const Lanes& sun_magnitude) {
   Lanes ratio;
-  for (int i = 0; i < lane_count; ++i) ratio(i) = magnitude_ratio(magnitude(i), sun_magnitude(i));
+  ratio(0) = magnitude_ratio(magnitude(0), sun_magnitude(0));
+  for (int i = 1; i < lane_count; ++i)
+    ratio(i) = magnitude(i) == magnitude(i - 1) && sun_magnitude(i) == sun_magnitude(i - 1)
+                   ? ratio(i - 1)
+                   : magnitude_ratio(magnitude(i), sun_magnitude(i));
   return ratio;
 }
 

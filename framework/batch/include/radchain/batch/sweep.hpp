@@ -117,6 +117,7 @@ class SweepWorker {
   std::vector<Column> columns_;
   std::vector<SolveOutcome> outcomes_;
   std::vector<std::size_t> index_;
+  std::vector<Lanes> lane_values_;  // each axis's value per lane (kept: no allocation per group)
   std::string failure_;
   bool lanes_ = false;  // evaluate_group() in lanes
   LaneSolveOutcome lane_outcome_;
