@@ -8,7 +8,8 @@ illuminance and total; the photon integral over the detector band) and closing w
 Prints the limiting magnitude (radchain: 15.5565) and the median times of
   * one limiting magnitude including the spectral integration (files already loaded; with the illuminance and
     total radchain also reports, and without them), and
-  * 1e6 vectorised evaluations over the aperture (closed form, no root finding).
+  * 1e6 vectorised evaluations over the aperture (closed form, no root finding), and
+  * 1e6 limiting magnitudes over a 100 × 100 × 100 grid of aperture × QE × exposure (the closed form broadcast).
 """
 import pathlib
 import statistics
@@ -80,6 +81,17 @@ def vectorised(apertures):
     return M_SUN - 2.5 * np.log10(signal_at_threshold() / electrons_per_ratio)
 
 
+def vectorised_grid(apertures, qes, times):
+    """The headline grid of issue 15: aperture × QE × exposure, the closed form broadcast over the three axes (the
+    dark electrons grow with the exposure, so the signal at threshold does too)."""
+    d, qe, t = apertures[:, None, None], qes[None, :, None], times[None, None, :]
+    t2 = THRESHOLD**2
+    floor = DARK_RATE * t + READ_NOISE**2 + FULL_WELL / (2**ADC_BITS * np.sqrt(12.0))
+    required = 0.5 * (t2 + np.sqrt(t2 * t2 + 4 * t2 * floor))
+    electrons_per_ratio = t * qe * TRANSMITTANCE * np.pi * d**2 / 4 * PHOTONS
+    return M_SUN - 2.5 * np.log10(required / electrons_per_ratio)
+
+
 def limiting_magnitude_lean(aperture=APERTURE):
     """The same without the sun's illuminance and total: only the integral the magnitude needs."""
     photons = band_integral(*BAND, SUN, weight=lambda l: l / (H * C))
@@ -101,4 +113,8 @@ if __name__ == "__main__":
     apertures = np.linspace(0.15, 0.30, 1_000_000)
     many = median_seconds(lambda: vectorised(apertures), number=10)
     print(f"1e6 vectorised evaluations over the aperture: {many * 1e3:.1f} ms (median of 7)")
+    grid = (np.linspace(0.15, 0.30, 100), np.linspace(0.2, 0.8, 100), np.linspace(0.1, 2.0, 100))
+    print(f"grid point 123456 (aperture × QE × exposure): {vectorised_grid(*grid).ravel()[123456]:.10g}")
+    many = median_seconds(lambda: vectorised_grid(*grid), number=10)
+    print(f"1e6 limiting magnitudes over the 100 × 100 × 100 grid: {many * 1e3:.1f} ms (median of 7)")
     print(f"numpy {np.__version__}")

@@ -219,6 +219,72 @@ void BM_MillionSolves_Lanes_AllCores(benchmark::State& state) {
 }
 BENCHMARK(BM_MillionSolves_Lanes_AllCores)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 
+// Issue 15's headline task: 10⁶ limiting magnitudes over a 3-axis grid, aperture × QE × exposure (100 each), what
+// `radchain sweep --set optics.aperture=15cm:30cm:100 --set detector.qe=0.2:0.8:100 --set
+// detector.integration_time=0.1s:2s:100` computes; bench/numpy_reference.py times numpy's closed form of the same grid.
+SweepOptions million_grid() {
+  SweepOptions options;
+  options.sensor_file = sbv;
+  options.axes = {{"optics.aperture", "15 cm:30 cm:100"}, {"detector.qe", "0.2:0.8:100"}, {"detector.integration_time", "0.1 s:2 s:100"}};
+  options.results = {"target.magnitude"};
+  return options;
+}
+double grid_value(double from, double to, std::size_t i) { return from + (to - from) * static_cast<double>(i) / 99.0; }
+
+void BM_MillionGridSolves_Lanes_OneCore(benchmark::State& state) {
+  const Sweep sweep(million_grid());
+  SweepWorker worker(sweep);
+  std::vector<double> out(4 * lane_count);
+  std::vector<char> ok(lane_count);
+  std::size_t group[lane_count];
+  double check = 0;
+  for (auto _ : state) {
+    for (std::size_t point = 0; point < million; point += lane_count) {
+      for (std::size_t k = 0; k < lane_count; ++k) group[k] = point + k;
+      worker.evaluate_group(group, lane_count, out.data(), ok.data());
+      if (point == 123456 - 123456 % lane_count) check = out[(123456 % lane_count) * 4 + 3];
+    }
+    keep(out[3]);
+  }
+  state.counters["m(point 123456)"] = check;
+}
+BENCHMARK(BM_MillionGridSolves_Lanes_OneCore)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// The physical reference for the grid: Pan 2010 eq. (11) by hand. Per point the noise floor n² − S = dark rate × t
+// + read² + quantisation (the SBV window is one pixel, no sky) and the electrons per unit flux ratio ∝ D² QE t,
+// both from one run of the chain.
+void BM_MillionGridLimitingMagnitudes_HandWrittenLoop(benchmark::State& state) {
+  Chain chain = load_sensor(sbv);
+  (void)chain.run();
+  auto result = [&](const char* name) { return chain.result(name); };
+  const double signal = result("detector.signal_electrons"), m0 = result("target.magnitude");
+  const double d0 = result("optics.aperture"), t0 = result("detector.integration_time");
+  const double qe0 = chain.parameter("detector.qe").value();
+  const double dark_rate = result("detector.dark_electrons") / t0;
+  const double constant_floor = std::pow(result("detector.read_noise"), 2) + std::pow(result("detector.quantisation_noise"), 2);
+  const double threshold = result("criteria.detection.threshold"), t2 = threshold * threshold;
+  const double electrons_per_ratio_0 = signal / std::pow(10.0, -0.4 * m0) / (d0 * d0 * qe0 * t0);
+  std::vector<double> out(million);
+  for (auto _ : state) {
+    std::size_t i = 0;
+    for (std::size_t a = 0; a < 100; ++a) {
+      const double d = grid_value(0.15, 0.30, a);
+      for (std::size_t q = 0; q < 100; ++q) {
+        const double qe = grid_value(0.2, 0.8, q);
+        for (std::size_t e = 0; e < 100; ++e, ++i) {
+          const double t = grid_value(0.1, 2.0, e);
+          const double floor = dark_rate * t + constant_floor;
+          const double required = 0.5 * (t2 + std::sqrt(t2 * t2 + 4 * t2 * floor));
+          out[i] = -2.5 * std::log10(required / (electrons_per_ratio_0 * d * d * qe * t));
+        }
+      }
+    }
+    keep(out[million / 2]);
+  }
+  state.counters["m(point 123456)"] = out[123456];
+}
+BENCHMARK(BM_MillionGridLimitingMagnitudes_HandWrittenLoop)->Unit(benchmark::kMillisecond);
+
 // What `radchain sweep` does for a million points: the solves on all cores and the CSV (to a null stream).
 class NullBuffer : public std::streambuf {
  protected:

@@ -59,6 +59,8 @@ class CcdFrame final : public LaneStage<CcdFrame> {
   // Signal, sky, dark ∝ their factors; read and quantisation constant. An Airy PSF's ensquared energy depends on
   // the f-number: not a power law of D or f' then.
   bool power_law() const override { return ensquared_entry_.present || !psf_wavelength_; }
+  // The ensquared energy does not depend on the flux: a magnitude solve is a power law through the frame.
+  bool power_law_in_signal() const override { return true; }
 
   explicit CcdFrame(const Params& p)
       : params_(p), qe_(p.handle("qe")), time_(p.handle("integration_time")), well_(p.handle("full_well")),

@@ -140,6 +140,11 @@ std::string nm_range(const Spectrum& s) {
 
 class Emva1288 final : public Stage {
  public:
+  // The flux enters linearly (the window's electrons, the peak pixel, the shot variance; PRNU's variance as its
+  // square) beside terms it does not move (n_eff, the window, sky, dark, read): a magnitude solve may be inverted
+  // in closed form. Not power_law(): n_eff and the ensquared energy are PSF integrals over the optics' f-number.
+  bool power_law_in_signal() const override { return true; }
+
   explicit Emva1288(const Params& p)
       : params_(p), qe_(p.handle("qe")), time_(p.handle("integration_time")), gain_(p.handle("gain")),
         dark_noise_(p.handle("dark_noise")), saturation_(p.handle("saturation_capacity")),

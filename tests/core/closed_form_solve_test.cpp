@@ -72,12 +72,26 @@ TEST(ClosedFormSolve, TheReportSaysWhichPathRanAndWhyNot) {
   EXPECT_EQ(sbv.solves[0].method, "closed form (noise equation)");
   EXPECT_EQ(sbv.solves[0].fallback, "");
   EXPECT_EQ(sbv.solves[0].iterations, 1);  // the check at the root; the bracket ends are evaluated either way
+  // The datasheet camera: its n_eff is a PSF integral over the f-number (not power_law()), but the flux enters
+  // linearly (power_law_in_signal()), so a magnitude goes closed form; with PRNU (variance ∝ S²) the noise equation
+  // no longer holds, the check at the root says so and the bracketing solver gives the root.
+  const std::string rubin = source_dir + "/sensors/rubin-lsst-r-m5.toml";
+  const Report m5 = load_sensor(rubin).run();
+  EXPECT_EQ(m5.solves[0].method, "closed form (noise equation)");
+  EXPECT_EQ(m5.solves[0].iterations, 1);
+  Chain with_prnu = load_sensor(rubin, {{"detector.prnu", "0.05"}}), with_prnu_root = load_sensor(rubin, {{"detector.prnu", "0.05"}});
+  with_prnu_root.solver = SolverChoice::root;
+  const Report prnu = with_prnu.run(), prnu_root = with_prnu_root.run();
+  EXPECT_EQ(prnu.solves[0].method, "root (TOMS 748)");
+  EXPECT_EQ(prnu.solves[0].fallback.rfind("the closed form's root ", 0), 0u) << prnu.solves[0].fallback;
+  EXPECT_NEAR(prnu.solves[0].value_si, prnu_root.solves[0].value_si, 1e-10 * prnu_root.solves[0].value_si);
+  EXPECT_GT(prnu.solves[0].value_si, m5.solves[0].value_si - 0.2);  // PRNU costs a bright-limited m5 little
   const Report eo = load_sensor(source_dir + "/examples/eo-design-niirs5.toml").run();
   EXPECT_EQ(eo.solves[1].method, "root (TOMS 748)");  // NIIRS is not a power law of D
   EXPECT_EQ(eo.solves[1].fallback, "criteria.quality (plugin \"giqe\") declares no closed-form inverse");
 }
 
-// Random designs around three sensors: every numeric optics/detector/target parameter scaled by a log-normal factor
+// Random designs around five sensors: every numeric optics/detector/target parameter scaled by a log-normal factor
 // (σ = 0.3), kept inside its schema range. Each draw is solved both ways, also with the bracket shrunk to 1e-7 around
 // the root on either side and moved entirely past it (no solution: the same failure text).
 TEST(ClosedFormSolve, RandomDrawsAgreeIncludingBracketEdgesAndNoSolution) {
@@ -85,7 +99,7 @@ TEST(ClosedFormSolve, RandomDrawsAgreeIncludingBracketEdgesAndNoSolution) {
   std::lognormal_distribution<double> factor(0.0, 0.3);
   int draws = 0, closed = 0;
   for (const char* name : {"/sensors/msx-sbv.toml", "/sensors/sbv-smallest-sphere.toml", "/examples/ground-telescope-geo.toml",
-                           "/sensors/kolobrodov-1996-ccd151.toml"}) {
+                           "/sensors/kolobrodov-1996-ccd151.toml", "/sensors/rubin-lsst-r-m5.toml"}) {
     const std::string file = source_dir + name;
     for (int draw = 0; draw < 60; ++draw) {
       Chain chain = load_sensor(file);
@@ -118,8 +132,8 @@ TEST(ClosedFormSolve, RandomDrawsAgreeIncludingBracketEdgesAndNoSolution) {
       }
     }
   }
-  EXPECT_EQ(draws, 240);
-  EXPECT_GE(closed, 200);  // most draws take the closed form (Kolobrodov's f' solve too)
+  EXPECT_EQ(draws, 300);
+  EXPECT_GE(closed, 250);  // most draws take the closed form (Kolobrodov's f' solve too)
 }
 
 TEST(ClosedFormSolve, LanesAgreeWithTheBracketingLanes) {

@@ -340,11 +340,16 @@ void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, d
   values.resize(axes.size());
   for (int lane = 0; lane < lane_count; ++lane) {
     const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(lane), count - 1);
-    std::size_t point = points[k];
-    for (std::size_t a = axes.size(); a-- > 0;) {
-      index_[a] = point % axes[a].steps;
-      point /= axes[a].steps;
-    }
+    if (lane > 0 && k == static_cast<std::size_t>(lane) && points[k] == points[k - 1] + 1) {
+      // The next point (the usual case): the innermost index steps, with a carry; no integer divisions.
+      for (std::size_t a = axes.size(); a-- > 0 && ++index_[a] == axes[a].steps;) index_[a] = 0;
+    } else if (lane == 0 || k == static_cast<std::size_t>(lane)) {
+      std::size_t point = points[k];
+      for (std::size_t a = axes.size(); a-- > 0;) {
+        index_[a] = point % axes[a].steps;
+        point /= axes[a].steps;
+      }
+    }  // (else a short group's unused lane: index_ still holds its last point)
     for (std::size_t a = 0; a < axes.size(); ++a) {
       const double v = axes[a].value(index_[a]);
       values[a](lane) = v * axes[a].to_si;  // (value_si)

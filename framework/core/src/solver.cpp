@@ -130,9 +130,16 @@ Chain::Inversion Chain::inversion_for(const ParameterRef& unknown, const std::st
   } else if (c == stages.size() || c < unknown.stage() || stages[c].info->inverse == InverseForm::none) {
     inversion.why_not = (c == stages.size() ? "criteria." + criterion : stage_name(stages[c])) + " declares no closed-form inverse";
   } else {
-    for (std::size_t s = unknown.stage() + 1; s < c && inversion.why_not.empty(); ++s)
-      if (stages[s].section.rfind("criteria.", 0) != 0 && !stages[s].stage->power_law())
-        inversion.why_not = stage_name(stages[s]) + " does not declare power-law results";
+    // A magnitude acts only through the flux: the stages after it need results that are power laws of the
+    // signal they receive; any other unknown (an aperture, a focal length) needs power laws of everything.
+    const bool through_signal = unknown.scaling() == Scaling::magnitude;
+    for (std::size_t s = unknown.stage() + 1; s < c && inversion.why_not.empty(); ++s) {
+      if (stages[s].section.rfind("criteria.", 0) == 0) continue;
+      const Stage& stage = *stages[s].stage;
+      if (through_signal ? !stage.power_law_in_signal() : !stage.power_law())
+        inversion.why_not = stage_name(stages[s]) + (through_signal ? " does not declare results that are power laws of its signal"
+                                                                    : " does not declare power-law results");
+    }
   }
   if (!inversion.why_not.empty()) return inversion;
   inversion.form = stages[c].info->inverse;

@@ -143,6 +143,11 @@ class Stage {
   // noise variance a sum of such terms (no thresholds, no tables or PSF integrals over a scalar): a scaled unknown
   // upstream then stays a power law through it, and a [[solve]] across it may be inverted in closed form.
   virtual bool power_law() const { return false; }
+  // True when every signal is a power of the signal scale the stage receives (the flux through which a target's
+  // magnitude acts) times factors that do not depend on it, and every variance or pixel level a sum of such terms.
+  // Weaker than power_law(): a PSF integral over the optics' f-number is allowed, since the flux does not move it.
+  // A [[solve]] for a magnitude may then be inverted in closed form across the stage.
+  virtual bool power_law_in_signal() const { return power_law(); }
 };
 
 // A stage whose scalar phase is one template, `template <class Access> void compute(Access&)` (radchain/lanes.hpp),
