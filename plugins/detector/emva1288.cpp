@@ -68,6 +68,7 @@
 #include "radchain/plugin.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -324,8 +325,7 @@ class Emva1288 final : public Stage {
       peak_fraction = physics::airy_ensquared_energy(pitch, lambda, fn, eps);
       ensquared = circle_photometry_ ? physics::airy_encircled_energy(radius_m, lambda, fn, eps)
                                      : physics::airy_ensquared_energy(n * binned, lambda, fn, eps);
-      // n_eff of the Airy core approximated by a Gaussian of the same FWHM (physics::diffraction_fwhm_rad).
-      neff = physics::gaussian_noise_equivalent_area_px(physics::diffraction_fwhm_rad(lambda, 1.0) * fn / binned);
+      neff = airy_noise_equivalent_area(binned, lambda, fn, eps);  // (binned: the b×b pixel's side)
     }
     if (params_.given("ensquared_energy")) ensquared = *ensquared_;
     if (psf_photometry_) ensquared = 1.0;
@@ -557,6 +557,17 @@ class Emva1288 final : public Stage {
   }
 
   const Params& params_;
+  // n_eff of the pixel-sampled Airy pattern (King 1983; physics::airy_noise_equivalent_area_px), remembered for the
+  // last sampling: it depends on nothing else, and its pixel sum at a coarse pitch takes milliseconds.
+  double airy_noise_equivalent_area(double pitch_m, double wavelength_m, double f_number, double obscuration) {
+    const std::array<double, 4> key{pitch_m, wavelength_m, f_number, obscuration};
+    if (key != airy_neff_key_)
+      airy_neff_key_ = key, airy_neff_ = physics::airy_noise_equivalent_area_px(pitch_m, wavelength_m, f_number, obscuration);
+    return airy_neff_;
+  }
+  std::array<double, 4> airy_neff_key_{};
+  double airy_neff_ = 0.0;
+
   const double *qe_, *time_, *gain_, *dark_noise_, *saturation_, *dark_current_, *prnu_, *dsnu_, *other_, *bits_,
       *binning_, *exposures_, *tdi_, *pitch_, *window_, *ensquared_;
   bool psf_photometry_, circle_photometry_;

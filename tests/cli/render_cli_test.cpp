@@ -94,6 +94,13 @@ TEST(RenderCli, PsfPhotometryValidatesWithTheMatchedFilter) {
   EXPECT_NE(clipped.out.find("note: the rendered frames have no ADC pedestal"), std::string::npos) << clipped.out;
   const CliResult pedestal = run_cli(scratch, roman + " --offset 100");
   EXPECT_EQ(pedestal.exit_code, 0) << pedestal.out << pedestal.err;
+  // An Airy core sampled at 0.69 λN (Gaia's 10 µm along-scan pixel at 0.6 µm, f/36.4): the chain's n_eff is the
+  // pixel-sampled Airy pattern's (physics::airy_noise_equivalent_area_px), which the renderer's FFT-built frame
+  // measures independently (it was the Gaussian of the same FWHM before: 12.5 against the frame's 14.6).
+  const CliResult airy = run_cli(scratch, "validate '" + source_dir + "/sensors/gaia-g-zero-point.toml' --trials 2000 "
+                                          "--set optics.psf=airy --set 'optics.psf_wavelength=0.6 um' --set detector.photometry=psf --offset 100");
+  EXPECT_EQ(airy.exit_code, 0) << airy.out << airy.err;
+  EXPECT_NE(airy.out.find("n_eff 14.6 px rendered, 14.6 chain"), std::string::npos) << airy.out;
 }
 
 // A scene file that cannot be read (not an image, a truncated FITS, missing) is input refused at --scene: one

@@ -131,3 +131,35 @@ TEST(PhysicsPsf, Gaussian) {
 }
 
 }  // namespace
+
+// n_eff of a pixel-sampled Airy PSF (King 1983's 1/Σ f²) two independent ways: for p ≤ λN/2 in the frequency domain
+// (Poisson summation, exact there) and pixel by pixel from the closed-form encircled energy; they must agree where
+// both apply, for a clear and an obscured pupil. Coarse pixels: the central pixel's share is the ensquared energy,
+// and n_eff lies between 1/f₀² (all other pixels dark) and 1/(f₀² + (1 − f₀)²) (the rest in one pixel).
+TEST(AiryNoiseEquivalentArea, FrequencyDomainAndPixelSumsAgree) {
+  const double lambda = 0.6e-6, f_number = 10.0, lambda_n = lambda * f_number;
+  for (double eps : {0.0, 0.3})
+    for (double p : {0.4, 0.5}) {
+      const double spectral = airy_noise_equivalent_area_px(p * lambda_n, lambda, f_number, eps);
+      const double pixels = airy_noise_equivalent_area_by_pixels(p * lambda_n, lambda, f_number, eps);
+      EXPECT_NEAR(pixels / spectral, 1.0, 1e-6) << "eps " << eps << " p " << p << ": " << spectral << " vs " << pixels;
+    }
+}
+
+TEST(AiryNoiseEquivalentArea, LimitsAndBounds) {
+  const double lambda = 0.8e-6, f_number = 1.4, lambda_n = lambda * f_number;
+  // Fine pixels: n_eff p² tends to the continuous 1/∫h²; halving the pitch quadruples n_eff but for the pixel's
+  // own blur, which raises n_eff p² at the coarser pitch (so the ratio stays below 4, within 2 %).
+  const double fine = airy_noise_equivalent_area_px(0.1 * lambda_n, lambda, f_number);
+  const double finer = airy_noise_equivalent_area_px(0.05 * lambda_n, lambda, f_number);
+  EXPECT_NEAR(finer / fine, 4.0, 0.08);
+  EXPECT_LT(finer / fine, 4.0);
+  for (double eps : {0.0, 0.3})
+    for (double p : {2.0, 13.4}) {  // 13.4: a TESS-like 15 µm pixel at f/1.4, 0.8 µm
+      const double f0 = airy_ensquared_energy(p * lambda_n, lambda, f_number, eps);
+      const double neff = airy_noise_equivalent_area_px(p * lambda_n, lambda, f_number, eps);
+      EXPECT_LT(neff, 1.0 / (f0 * f0)) << p;
+      EXPECT_GT(neff, 1.0 / (f0 * f0 + (1 - f0) * (1 - f0))) << p;
+    }
+  EXPECT_THROW(airy_noise_equivalent_area_px(0.0, lambda, f_number), std::domain_error);
+}
