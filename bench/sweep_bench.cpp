@@ -164,20 +164,28 @@ void BM_MillionSolves_OneCore(benchmark::State& state) {
 }
 BENCHMARK(BM_MillionSolves_OneCore)->Unit(benchmark::kMillisecond)->Iterations(1);
 
+// A million points of `sweep` in groups of eight, solved in lockstep on this thread (what `radchain sweep` does on
+// each worker); the last column at `probe`.
+double solve_in_groups(const Sweep& sweep, std::size_t probe) {
+  SweepWorker worker(sweep);
+  const std::size_t columns = sweep.columns();
+  std::vector<double> out(columns * lane_count);
+  std::vector<char> ok(lane_count);
+  std::size_t group[lane_count];
+  double probed = 0;
+  for (std::size_t point = 0; point < million; point += lane_count) {
+    for (std::size_t k = 0; k < lane_count; ++k) group[k] = point + k;
+    worker.evaluate_group(group, lane_count, out.data(), ok.data());
+    if (point == probe - probe % lane_count) probed = out[(probe % lane_count) * columns + columns - 1];
+  }
+  keep(out[columns - 1]);
+  return probed;
+}
+
 // The same in lanes: eight points per group, solved in lockstep (what `radchain sweep` does).
 void BM_MillionSolves_Lanes_OneCore(benchmark::State& state) {
   const Sweep sweep(million_apertures());
-  SweepWorker worker(sweep);
-  std::vector<double> out(2 * lane_count);
-  std::vector<char> ok(lane_count);
-  std::size_t group[lane_count];
-  for (auto _ : state) {
-    for (std::size_t point = 0; point < million; point += lane_count) {
-      for (std::size_t k = 0; k < lane_count; ++k) group[k] = point + k;
-      worker.evaluate_group(group, lane_count, out.data(), ok.data());
-    }
-    keep(out[1]);
-  }
+  for (auto _ : state) solve_in_groups(sweep, 0);
 }
 BENCHMARK(BM_MillionSolves_Lanes_OneCore)->Unit(benchmark::kMillisecond)->Iterations(1);
 
@@ -233,20 +241,9 @@ double grid_value(double from, double to, std::size_t i) { return from + (to - f
 
 void BM_MillionGridSolves_Lanes_OneCore(benchmark::State& state) {
   const Sweep sweep(million_grid());
-  SweepWorker worker(sweep);
-  std::vector<double> out(4 * lane_count);
-  std::vector<char> ok(lane_count);
-  std::size_t group[lane_count];
-  double check = 0;
-  for (auto _ : state) {
-    for (std::size_t point = 0; point < million; point += lane_count) {
-      for (std::size_t k = 0; k < lane_count; ++k) group[k] = point + k;
-      worker.evaluate_group(group, lane_count, out.data(), ok.data());
-      if (point == 123456 - 123456 % lane_count) check = out[(123456 % lane_count) * 4 + 3];
-    }
-    keep(out[3]);
-  }
-  state.counters["m(point 123456)"] = check;
+  double probed = 0;
+  for (auto _ : state) probed = solve_in_groups(sweep, 123456);
+  state.counters["m(point 123456)"] = probed;
 }
 BENCHMARK(BM_MillionGridSolves_Lanes_OneCore)->Unit(benchmark::kMillisecond)->Iterations(1);
 

@@ -92,6 +92,7 @@ const Case cases[] = {
     {"sky_table_negative"},
     {"space_zodiacal_near_sun"},
     {"space_negative_stray_light"},
+    {"space_negative_stray_light_table"},
     {"space_zodiacal_latitude_only"},
     {"reference_radiance_negative"},
     {"streak_negative_rate"},

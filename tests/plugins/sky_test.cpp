@@ -218,4 +218,42 @@ TEST(Zodiacal, BackgroundElectronsByHandAndStrayLightAdds) {
   EXPECT_DOUBLE_EQ(v(zodi, "detector.image_electrons"), v(vacuum, "detector.image_electrons"));
 }
 
+// A stray-light table (issue 13 item 3: "stray light/earthshine as tables"), two independent references:
+// - a flat 1 W m⁻² sr⁻¹ m⁻¹ over 300-1000 nm behind the same optics and detector, in closed form:
+//   B = t qe p² Ω ∫ L λ/(hc) dλ = t qe p² Ω L (λ₂² − λ₁²)/(2hc) over the band 400-900 nm;
+// - the solar spectrum's shape at 1 W m⁻² sr⁻¹ m⁻¹ at 500 nm as a table: the same count as `stray_light` of that
+//   radiance (the scalar form), and it adds to the zodiacal light.
+TEST(Zodiacal, StrayLightTableFlatByHandAndSolarShapeAsTheScalarForm) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string flat_name = "radchain_sky_" + std::to_string(::getpid()) + "_flat_stray.csv";
+  std::ofstream(dir / flat_name) << "# test: flat stray light\nwavelength_nm,radiance_W_m-2_sr-1_m-1\n300,1\n1000,1\n";
+  const Report flat = run_text("flat_stray", space_sensor("stray_light_table = \"" + flat_name + "\""));
+  auto v = [](const Report& r, const std::string& n) { return r.value(n).value(); };
+  const double hc = constants::planck_J_s * constants::speed_of_light_m_s;
+  const double n = 0.5 / 0.15, omega = std::numbers::pi / (4 * n * n);
+  const double by_hand = 10 * 0.6 * 25e-12 * omega * 1.0 * (900e-9 * 900e-9 - 400e-9 * 400e-9) / (2 * hc);
+  EXPECT_NEAR(v(flat, "detector.sky_electrons_per_pixel") / by_hand, 1.0, 1e-9);
+  EXPECT_DOUBLE_EQ(v(flat, "atmosphere.stray_light_table_radiance_500nm"), 1.0);
+  EXPECT_DOUBLE_EQ(v(flat, "atmosphere.background_radiance_500nm"), 1.0);
+
+  const Spectrum sun = load_spectrum_csv(spectra + "am0_astm_e490_00a.csv", "W m-2 m-1").spectrum;
+  const std::string solar_name = "radchain_sky_" + std::to_string(::getpid()) + "_solar_stray.csv";
+  {
+    std::ofstream out(dir / solar_name);
+    out << "# test: the E-490 shape at 1 W m-2 sr-1 m-1 at 500 nm\nwavelength_nm,radiance_W_m-2_sr-1_m-1\n";
+    out.precision(17);
+    for (Eigen::Index i = 0; i < sun.size(); ++i)
+      if (sun.wavelength_m()(i) >= 300e-9 && sun.wavelength_m()(i) <= 1000e-9)
+        out << sun.wavelength_m()(i) * 1e9 << "," << sun.value()(i) / sun(500e-9) << "\n";
+  }
+  const std::string zodi = "zodiacal_longitude = \"90 deg\"\nzodiacal_latitude = \"30 deg\"\n";
+  const Report table = run_text("solar_stray", space_sensor(zodi + "stray_light_table = \"" + solar_name + "\""));
+  const Report scalar = run_text("scalar_stray", space_sensor(zodi + "stray_light = \"1e-6 W m-2 sr-1 um-1\""));
+  EXPECT_NEAR(v(table, "detector.sky_electrons_per_pixel") / v(scalar, "detector.sky_electrons_per_pixel"), 1.0, 1e-9);
+  EXPECT_NEAR(v(table, "atmosphere.background_radiance_500nm"), 2.32, 1e-9);
+  EXPECT_DOUBLE_EQ(v(table, "atmosphere.zodiacal_radiance_500nm"), 1.32);
+  std::filesystem::remove(dir / flat_name);
+  std::filesystem::remove(dir / solar_name);
+}
+
 }  // namespace

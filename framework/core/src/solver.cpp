@@ -350,7 +350,19 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
     // below the tolerance, so the bracket closes from both sides.
     Lanes a = constant_lanes(spec.lo), b = constant_lanes(spec.hi);
     Lanes& root = roots[k];
-    // Lanes whose root the faint end alone gave and the check at the root confirmed (as solve()).
+    // The check both closed forms share (as solve()): the lanes evaluated at the candidates' roots (the others where
+    // x leaves them), and the roots kept whose margin is zero to the tolerance.
+    auto confirm = [&](const Lanes& x, const std::array<bool, lane_count>& candidate) {
+      set_lanes(resolved.unknown, x);
+      evaluate_lanes(n_criteria == 1 ? outcome.final_detail : Detail::essential);
+      ++outcome.passes;
+      const Lanes& m = lane_result(id);
+      std::array<bool, lane_count> confirmed{};
+      for (int i = 0; i < lane_count; ++i)
+        if (candidate[i] && std::abs(m(i)) <= closed_form_tolerance) confirmed[i] = true, root(i) = x(i), ++outcome.closed_form;
+      return confirmed;
+    };
+    // Lanes whose root the faint end alone gave and the check at the root confirmed.
     std::array<bool, lane_count> settled{};
     if (try_closed_form && one_end_applies(inversion.form, inversion.threshold, resolved.unknown.scaling())) {
       const double faint = std::max(spec.lo, spec.hi);
@@ -367,12 +379,7 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
         if (candidate[i]) x(i) = xi, any = true;
       }
       if (any) {
-        set_lanes(resolved.unknown, x);
-        evaluate_lanes(n_criteria == 1 ? outcome.final_detail : Detail::essential);
-        ++outcome.passes;
-        const Lanes& m = lane_result(id);
-        for (int i = 0; i < lane_count; ++i)
-          if (candidate[i] && std::abs(m(i)) <= closed_form_tolerance) root(i) = x(i), settled[i] = true, ++outcome.closed_form;
+        settled = confirm(x, candidate);
         if (std::all_of(settled.begin(), settled.end(), [](bool s) { return s; })) {
           if (n_criteria == 1) {  // every lane was last evaluated at its root, in the final detail
             outcome.value = root;
@@ -419,12 +426,8 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
         if (candidate[i]) x(i) = xi, any = true;
       }
       if (any) {
-        set_lanes(resolved.unknown, x);
-        evaluate_lanes(n_criteria == 1 ? outcome.final_detail : Detail::essential);
-        ++outcome.passes;
-        const Lanes& m = lane_result(id);
-        for (int i = 0; i < lane_count; ++i)
-          if (candidate[i] && std::abs(m(i)) <= closed_form_tolerance) root(i) = x(i), active[i] = false, ++outcome.closed_form;
+        const std::array<bool, lane_count> confirmed = confirm(x, candidate);
+        for (int i = 0; i < lane_count; ++i) active[i] = active[i] && !confirmed[i];
         final_evaluated = n_criteria == 1 && std::none_of(active.begin(), active.end(), [](bool a) { return a; });
       }
     }
