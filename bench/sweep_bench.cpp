@@ -164,10 +164,9 @@ void BM_MillionSolves_OneCore(benchmark::State& state) {
 }
 BENCHMARK(BM_MillionSolves_OneCore)->Unit(benchmark::kMillisecond)->Iterations(1);
 
-// A million points of `sweep` in groups of eight, solved in lockstep on this thread (what `radchain sweep` does on
-// each worker); the last column at `probe`.
-double solve_in_groups(const Sweep& sweep, std::size_t probe) {
-  SweepWorker worker(sweep);
+// A million points of `sweep` in groups of eight through `worker`, solved in lockstep on this thread (what
+// `radchain sweep` does on each worker thread); the last column at `probe`.
+double solve_in_groups(const Sweep& sweep, SweepWorker& worker, std::size_t probe) {
   const std::size_t columns = sweep.columns();
   std::vector<double> out(columns * lane_count);
   std::vector<char> ok(lane_count);
@@ -185,7 +184,8 @@ double solve_in_groups(const Sweep& sweep, std::size_t probe) {
 // The same in lanes: eight points per group, solved in lockstep (what `radchain sweep` does).
 void BM_MillionSolves_Lanes_OneCore(benchmark::State& state) {
   const Sweep sweep(million_apertures());
-  for (auto _ : state) solve_in_groups(sweep, 0);
+  SweepWorker worker(sweep);
+  for (auto _ : state) solve_in_groups(sweep, worker, 0);
 }
 BENCHMARK(BM_MillionSolves_Lanes_OneCore)->Unit(benchmark::kMillisecond)->Iterations(1);
 
@@ -241,8 +241,9 @@ double grid_value(double from, double to, std::size_t i) { return from + (to - f
 
 void BM_MillionGridSolves_Lanes_OneCore(benchmark::State& state) {
   const Sweep sweep(million_grid());
+  SweepWorker worker(sweep);
   double probed = 0;
-  for (auto _ : state) probed = solve_in_groups(sweep, 123456);
+  for (auto _ : state) probed = solve_in_groups(sweep, worker, 123456);
   state.counters["m(point 123456)"] = probed;
 }
 BENCHMARK(BM_MillionGridSolves_Lanes_OneCore)->Unit(benchmark::kMillisecond)->Iterations(1);

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 namespace {
 using namespace radchain;
@@ -37,7 +38,7 @@ const Schema& schema() {
           .described("stray light as a spectral radiance table with its own spectrum (e.g. an earthshine model's "
                      "output), added as given within its range (0 beyond it, as a site's sky_table); default: none"),
       spectrum_file("solar_spectrum", "W m-2 m-1", "am0_astm_e490_00a.csv").fallback("am0_astm_e490_00a.csv")
-          .described("the Sun's spectral irradiance: the spectrum of the zodiacal and stray light"),
+          .described("the Sun's spectral irradiance: the spectrum of the zodiacal light and of `stray_light` (not of a table)"),
   };
   return s;
 }
@@ -55,9 +56,6 @@ class Space final : public Stage {
   void prepare(Context& c) override {
     id_transmittance_ = c.declare("transmittance", "1", "1: no atmosphere on the line of sight");
     if (!background_) return;
-    const Spectrum& sun = params_.spectrum("solar_spectrum");
-    if (reference_wavelength_m < sun.min_wavelength_m() || reference_wavelength_m > sun.max_wavelength_m())
-      params_.reject("solar_spectrum", "the table must cover 500 nm (the zodiacal and stray light are given there)");
     zodiacal_500_ = 0;
     if (zodiacal_) {
       const auto found = physics::leinert_zodiacal_radiance_500nm(params_.get("zodiacal_longitude") / deg,
@@ -67,18 +65,28 @@ class Space final : public Stage {
                                              "(|λ − λ⊙| < 15-30° near the ecliptic)");
       zodiacal_500_ = *found;
     }
-    const double sunlit_500 = zodiacal_500_ + (params_.has("stray_light") ? params_.get("stray_light") : 0.0);
-    // The solar spectrum's shape at the zodiacal and 500 nm stray radiance, plus the table as given.
-    Spectrum background = sun.scaled(sunlit_500 / sun(reference_wavelength_m), "W m-2 sr-1 m-1");
+    // The solar spectrum's shape at the zodiacal and 500 nm stray radiance (when either is given), plus the table.
+    std::optional<Spectrum> sunlit;
+    if (zodiacal_ || params_.has("stray_light")) {
+      const Spectrum& sun = params_.spectrum("solar_spectrum");
+      if (reference_wavelength_m < sun.min_wavelength_m() || reference_wavelength_m > sun.max_wavelength_m())
+        params_.reject("solar_spectrum", "the table must cover 500 nm (the zodiacal and stray light are given there)");
+      const double at_500 = zodiacal_500_ + (params_.has("stray_light") ? params_.get("stray_light") : 0.0);
+      sunlit = sun.scaled(at_500 / sun(reference_wavelength_m), "W m-2 sr-1 m-1");
+    }
     table_500_ = 0;
+    std::optional<Spectrum> table;
     if (params_.has("stray_light_table")) {
-      const Spectrum& table = params_.spectrum("stray_light_table");
-      if (table.value().minCoeff() < 0) params_.reject("stray_light_table", "a stray-light radiance cannot be negative");
-      table_500_ = table(reference_wavelength_m);
-      // On both grids: the sunlit part everywhere, the table's radiance within its range (0 beyond, as a sky_table).
-      const Eigen::ArrayXd grid = union_grid({&background, &table}, std::min(background.min_wavelength_m(), table.min_wavelength_m()),
-                                             std::max(background.max_wavelength_m(), table.max_wavelength_m()));
-      background = Spectrum(grid, background(grid) + table(grid), "W m-2 sr-1 m-1");
+      table = params_.spectrum("stray_light_table").scaled(1.0, "W m-2 sr-1 m-1");
+      if (table->value().minCoeff() < 0) params_.reject("stray_light_table", "a stray-light radiance cannot be negative");
+      table_500_ = (*table)(reference_wavelength_m);
+    }
+    Spectrum background = sunlit ? *sunlit : *table;
+    if (sunlit && table) {  // on both grids: the sunlit part everywhere, the table within its range (0 beyond, as a sky_table)
+      const double lo = std::min(sunlit->min_wavelength_m(), table->min_wavelength_m());
+      const double hi = std::max(sunlit->max_wavelength_m(), table->max_wavelength_m());
+      const Eigen::ArrayXd grid = union_grid({&*sunlit, &*table}, lo, hi);
+      background = Spectrum(grid, (*sunlit)(grid) + (*table)(grid), "W m-2 sr-1 m-1");
     }
     c.light.background = Radiation{RadiationForm::scene_radiance, std::move(background), 1.0};
     id_total_ = c.declare("background_radiance_500nm", "W m-2 sr-1 m-1", "zodiacal + stray light (both forms) at 500 nm",

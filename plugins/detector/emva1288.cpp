@@ -334,7 +334,14 @@ class Emva1288 final : public Stage {
     if (moving_ && !rate_tracking_ && streak_m > 0) {
       const double psf = fwhm > 0 ? fwhm : physics::diffraction_fwhm_rad(a.value(*psf_wavelength_), 1.0) * a.value(*f_number_);
       neff = physics::streak_noise_equivalent_area_px(psf / binned, streak_m / binned);
+      // An Airy core streaks as its Gaussian, scaled to the exact still n_eff and peak pixel: no jump at zero
+      // length, and the trailing loss is the Gaussian model's.
+      const double still_peak = peak_fraction;
       peak_fraction = physics::streak_peak_pixel_fraction(psf / pitch, streak_m / pitch);
+      if (fwhm == 0) {
+        neff *= static_neff / physics::gaussian_noise_equivalent_area_px(psf / binned);
+        peak_fraction *= still_peak / physics::gaussian_peak_pixel_fraction(psf / pitch);
+      }
     }
 
     const double image1 = a.signal_scale() * qe * photon_rate_per_scale_ * t * tdi;  // one frame, all pixels
@@ -561,8 +568,10 @@ class Emva1288 final : public Stage {
   // last sampling: it depends on nothing else, and its pixel sum at a coarse pitch takes milliseconds.
   double airy_noise_equivalent_area(double pitch_m, double wavelength_m, double f_number, double obscuration) {
     const std::array<double, 4> key{pitch_m, wavelength_m, f_number, obscuration};
-    if (key != airy_neff_key_)
-      airy_neff_key_ = key, airy_neff_ = physics::airy_noise_equivalent_area_px(pitch_m, wavelength_m, f_number, obscuration);
+    if (key != airy_neff_key_) {
+      airy_neff_ = physics::airy_noise_equivalent_area_px(pitch_m, wavelength_m, f_number, obscuration);
+      airy_neff_key_ = key;  // (after: a throw leaves no stale value under this key)
+    }
     return airy_neff_;
   }
   std::array<double, 4> airy_neff_key_{};

@@ -71,7 +71,7 @@ TEST(ClosedFormSolve, TheReportSaysWhichPathRanAndWhyNot) {
   const Report sbv = load_sensor(source_dir + "/sensors/msx-sbv.toml").run();
   EXPECT_EQ(sbv.solves[0].method, "closed form (noise equation)");
   EXPECT_EQ(sbv.solves[0].fallback, "");
-  EXPECT_EQ(sbv.solves[0].iterations, 1);  // the check at the root; the bracket ends are evaluated either way
+  EXPECT_EQ(sbv.solves[0].iterations, 1);  // the check at the root (after the faint end, which is not counted)
   // The datasheet camera: its n_eff is a PSF integral over the f-number (not power_law()), but the flux enters
   // linearly (power_law_in_signal()), so a magnitude goes closed form; with PRNU (variance ∝ S²) the noise equation
   // no longer holds, the check at the root says so and the bracketing solver gives the root.

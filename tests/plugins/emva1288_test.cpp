@@ -6,6 +6,7 @@
 #include "radchain/error.hpp"
 #include "radchain/physics/emva1288.hpp"
 #include "radchain/physics/magnitudes.hpp"
+#include "radchain/physics/psf.hpp"
 #include "radchain/physics/streak.hpp"
 #include "radchain/spectrum_csv.hpp"
 
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -332,6 +334,36 @@ TEST(Emva1288Chain, StreakNoiseEquivalentAreaAndTrailingLoss) {
   }
   EXPECT_NEAR(v(tracked, "detector.star_streak_pixels"), 4.0, 1e-12);
   EXPECT_EQ(v(tracked, "detector.target_streak_pixels"), 0.0);
+}
+
+// An Airy PSF alone (f/5 at 0.6 µm on 5 µm pixels: p = 1.67 λN): the still n_eff is the pixel-sampled Airy
+// pattern's; a streak convolves the Airy core's Gaussian (FWHM 1.028 λN), scaled to that still n_eff, so a vanishing
+// streak gives the still n_eff and a zero loss, and a 4-pixel streak a positive loss equal to the Gaussian model's.
+TEST(Emva1288Chain, AiryStreakStartsFromTheExactStillNoiseEquivalentArea) {
+  auto airy = [](const std::string& name, const std::string& det) {
+    std::string file = write_sensor(name, "magnitude = 12", "dark_noise = \"3 e-\"\nphotometry = \"psf\"\n" + det);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string gaussian = "psf = \"gaussian\"\ngaussian_fwhm = \"10 um\"";
+    text.replace(text.find(gaussian), gaussian.size(), "psf = \"airy\"\npsf_wavelength = \"0.6 um\"");
+    std::ofstream(file) << text;
+    return run(file);
+  };
+  auto v = [](const Report& r, const std::string& n) { return r.value(n).value(); };
+  using namespace radchain::physics;
+  const double exact = airy_noise_equivalent_area_px(5e-6, 0.6e-6, 5.0);
+  const Report still = airy("airy_still", "");
+  const Report creep = airy("airy_creep", "target_rate = \"5e-12 rad/s\"\n");  // 5e-6 pixel in 1 s
+  const Report streak = airy("airy_streak", "target_rate = \"20 urad/s\"\n");  // 4 pixels
+  EXPECT_NEAR(v(still, "detector.noise_equivalent_area"), exact, 1e-12 * exact);
+  EXPECT_NEAR(v(creep, "detector.noise_equivalent_area"), exact, 1e-6 * exact);
+  EXPECT_NEAR(v(creep, "detector.trailing_loss"), 0.0, 1e-6);
+  EXPECT_NEAR(v(creep, "detector.peak_pixel_electrons") / v(still, "detector.peak_pixel_electrons"), 1.0, 1e-6);
+  const double fwhm_px = diffraction_fwhm_rad(0.6e-6, 1.0) * 5.0 / 5e-6;
+  const double gaussian_loss = 1.25 * std::log10(streak_noise_equivalent_area_px(fwhm_px, 4.0) / gaussian_noise_equivalent_area_px(fwhm_px));
+  EXPECT_GT(gaussian_loss, 0.05);
+  EXPECT_NEAR(v(streak, "detector.trailing_loss"), gaussian_loss, 1e-9);
+  EXPECT_NEAR(v(streak, "detector.static_noise_equivalent_area"), exact, 1e-12 * exact);
 }
 
 // examples/rubin-geo-streak.toml: a GEO satellite (15.041"/s) in a 30 s Rubin r visit trails 451.2" = 2256 px;

@@ -351,8 +351,8 @@ void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, d
       }
     }  // (else a short group's unused lane: index_ still holds its last point)
     for (std::size_t a = 0; a < axes.size(); ++a) {
-      const double v = axes[a].value(index_[a]);
-      values[a](lane) = v * axes[a].to_si;  // (value_si)
+      const double v = axes[a].value(index_[a]);  // (value_si() would compute it a second time)
+      values[a](lane) = v * axes[a].to_si;
       if (static_cast<std::size_t>(lane) < count) out[k * n_columns + a] = v;
     }
   }

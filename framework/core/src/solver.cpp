@@ -1,8 +1,9 @@
 // The chain's [[solve]] entries. Where the chain declares how the unknown acts (a power law of x or of the flux
 // 10^(−0.4 x), through stages whose results are power laws, into a criterion with a closed-form inverse), the root
-// follows in closed form from the margins at the bracket ends and is accepted when the margin there is zero to
-// 1e-12 (issue 15); otherwise, and with --solver root, the root is bracketed one point at a time (Boost.Math
-// TOMS 748) or for lane_count points in lockstep (Dekker's method).
+// follows in closed form — for a target's magnitude through the noise equation from the faint bracket end alone,
+// otherwise from the margins at both ends — and is accepted when the margin there is zero to 1e-12 (issue 15);
+// otherwise, and with --solver root, the root is bracketed one point at a time (Boost.Math TOMS 748) or for
+// lane_count points in lockstep (Dekker's method).
 #include "radchain/chain.hpp"
 
 #include "radchain/error.hpp"
@@ -93,14 +94,14 @@ double closed_form_root(InverseForm form, Scaling scaling, const Sample& a, cons
   return from_log_variable(scaling, a.x, std::log(signal / a.signal) / k);
 }
 
-// The root from the faint bracket end alone, where the unknown is a magnitude and the criterion is the noise
-// equation: through stages linear in the flux the signal is S ∝ u = 10^(−0.4 x) (k = 1), and a detector counting
-// Poisson electrons has n² = S + c (b = 1), so the criterion's T and one end's c = n² − S give the root
-// x = x_end − 2.5 log10(S*/S_end) with S* = (T² + √(T⁴ + 4T²c))/2. The faint end (largest magnitude), because at
-// the bright one c = n² − S cancels (S ≫ c leaves margins of ~1e-11 at the root); T is the criterion's own, since
-// rebuilding it from the margin at the faint end (1 + margin ≈ 1e-4) loses as many digits. Nothing here is assumed unchecked: the margin at
-// the root must be zero to 1e-12, as for the two-end form, or the upper end is evaluated and the two-end form (or
-// the bracketing solver) takes over. NaN when the end does not fit the form.
+// The root from the faint bracket end alone, where the unknown is a target's magnitude and the criterion is the
+// noise equation: through stages whose signals are powers of the flux the signal is S ∝ u = 10^(−0.4 x) (k = 1),
+// and a detector counting Poisson electrons has n² = S + c (b = 1), so the criterion's T and one end's c = n² − S
+// give the root x = x_end − 2.5 log10(S*/S_end) with S* = (T² + √(T⁴ + 4T²c))/2. The faint end (largest
+// magnitude), because at the bright one c = n² − S cancels (S ≫ c left margins of ~1e-11 at the root); T is the
+// criterion's own, since rebuilding it from the margin at the faint end (1 + margin ≈ 1e-4) loses as many digits.
+// Nothing is assumed unchecked: the margin at the root must be zero to 1e-12, as for the two-end form, or both
+// ends are evaluated and the two-end form (or the bracketing solver) takes over. NaN when the end does not fit.
 double closed_form_root_from_one_end(double x, double signal, double variance, double threshold) {
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   if (!(signal > 0 && variance > 0 && threshold > 0)) return nan;
@@ -112,8 +113,8 @@ double closed_form_root_from_one_end(double x, double signal, double variance, d
   return x - 2.5 * std::log10(root_signal / signal);
 }
 
-bool one_end_applies(InverseForm form, ResultId threshold, Scaling scaling) {
-  return form == InverseForm::noise_equation && threshold != SIZE_MAX && scaling == Scaling::magnitude;
+bool one_end_applies(InverseForm form, ResultId threshold, bool through_signal) {
+  return form == InverseForm::noise_equation && threshold != SIZE_MAX && through_signal;
 }
 
 std::string stage_name(const StageSlot& s) { return fmt::format("{} (plugin \"{}\")", s.section, s.plugin); }
@@ -130,14 +131,15 @@ Chain::Inversion Chain::inversion_for(const ParameterRef& unknown, const std::st
   } else if (c == stages.size() || c < unknown.stage() || stages[c].info->inverse == InverseForm::none) {
     inversion.why_not = (c == stages.size() ? "criteria." + criterion : stage_name(stages[c])) + " declares no closed-form inverse";
   } else {
-    // A magnitude acts only through the flux: the stages after it need results that are power laws of the
-    // signal they receive; any other unknown (an aperture, a focal length) needs power laws of everything.
-    const bool through_signal = unknown.scaling() == Scaling::magnitude;
+    // A target's magnitude acts only through the flux: the stages after it need signals that are powers of the
+    // flux they receive; any other unknown (an aperture, a focal length, a sky brightness) needs power laws of all.
+    const bool through_signal = unknown.scaling() == Scaling::magnitude && owner.section == "target";
+    inversion.through_signal = through_signal;
     for (std::size_t s = unknown.stage() + 1; s < c && inversion.why_not.empty(); ++s) {
       if (stages[s].section.rfind("criteria.", 0) == 0) continue;
       const Stage& stage = *stages[s].stage;
       if (through_signal ? !stage.power_law_in_signal() : !stage.power_law())
-        inversion.why_not = stage_name(stages[s]) + (through_signal ? " does not declare results that are power laws of its signal"
+        inversion.why_not = stage_name(stages[s]) + (through_signal ? " does not declare signals that are powers of its flux"
                                                                     : " does not declare power-law results");
     }
   }
@@ -205,7 +207,7 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
       }
       return s;
     };
-    if (solver == SolverChoice::automatic && one_end_applies(inversion.form, inversion.threshold, resolved.unknown.scaling())) {
+    if (solver == SolverChoice::automatic && one_end_applies(inversion.form, inversion.threshold, inversion.through_signal)) {
       const double faint = std::max(spec.lo, spec.hi);
       const double f_faint = f(faint);
       const Sample at = sample(faint);
@@ -364,7 +366,7 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
     };
     // Lanes whose root the faint end alone gave and the check at the root confirmed.
     std::array<bool, lane_count> settled{};
-    if (try_closed_form && one_end_applies(inversion.form, inversion.threshold, resolved.unknown.scaling())) {
+    if (try_closed_form && one_end_applies(inversion.form, inversion.threshold, inversion.through_signal)) {
       const double faint = std::max(spec.lo, spec.hi);
       margins_at(constant_lanes(faint));
       const Lanes &m = lane_result(id), &s = lane_result(inversion.signal), &n = lane_result(inversion.noise),

@@ -130,8 +130,6 @@ TEST(PhysicsPsf, Gaussian) {
   EXPECT_EQ(ensquared_from_encircled([](double) { return 1.0; }, 0.0), 0.0);
 }
 
-}  // namespace
-
 // n_eff of a pixel-sampled Airy PSF (King 1983's 1/Σ f²) two independent ways: for p ≤ λN/2 in the frequency domain
 // (Poisson summation, exact there) and pixel by pixel from the closed-form encircled energy; they must agree where
 // both apply, for a clear and an obscured pupil. Coarse pixels: the central pixel's share is the ensquared energy,
@@ -163,3 +161,5 @@ TEST(AiryNoiseEquivalentArea, LimitsAndBounds) {
     }
   EXPECT_THROW(airy_noise_equivalent_area_px(0.0, lambda, f_number), std::domain_error);
 }
+
+}  // namespace

@@ -250,6 +250,7 @@ class Chain {
     std::string why_not;
     ResultId signal = SIZE_MAX, noise = SIZE_MAX;  // noise_equation: the detector's S and n
     ResultId threshold = SIZE_MAX;                 // noise_equation: the criterion's T, where it publishes one
+    bool through_signal = false;                   // a target's magnitude: it acts only through the flux
   };
   struct ResolvedSolve {
     ParameterRef unknown;

@@ -36,7 +36,8 @@ double airy_encircled_energy_v(double v, double obscuration = 0.0);
 double airy_encircled_energy(double radius_m, double wavelength_m, double f_number, double obscuration = 0.0);
 // Fraction within a centred square of side a.
 double airy_ensquared_energy(double side_m, double wavelength_m, double f_number, double obscuration = 0.0);
-// The noise-equivalent area n_eff = 1/Σ f_ij² (pixels) of an Airy PSF centred on a pixel of side `pitch`, f_ij the
+// The noise-equivalent area n_eff = 1/Σ f_ij² (pixels) of an Airy PSF centred on a pixel of side `pitch` (the best
+// case: a star on a pixel corner spreads over more pixels when p ≳ λN), f_ij the
 // energy in pixel (i, j) (the photometric weight of PSF fitting: King 1983, PASP 95, 163). For pitch ≤ λN/2 the
 // sum is exact in the frequency domain (Poisson summation: the squared, pixel-integrated PSF is band-limited to
 // 2/(λN), so no alias reaches the sampling): Σ f² = p² ∫∫ OTF(ν)² sinc²(p ν_x) sinc²(p ν_y) d²ν. Coarser pixels
@@ -44,7 +45,8 @@ double airy_ensquared_energy(double side_m, double wavelength_m, double f_number
 double airy_noise_equivalent_area_px(double pitch_m, double wavelength_m, double f_number, double obscuration = 0.0);
 // The same summed over pixels (any pitch): each pixel's energy from the closed-form encircled energy by the polar
 // form of a rectangle (as ensquared_from_encircled), out to (K + ½) p ≥ 12 λN, plus the r⁻⁶ tail of the squares
-// beyond (the ring-averaged intensity (λN)/(π³ (1 − ε) r³) per unit area: below 1e-7 of the sum).
+// beyond (from the ring-averaged intensity (λN)/(π³ (1 − ε) r³) per unit area: ~2e-7 of the sum or less).
+// Milliseconds for p ≳ 2 λN; 40 ms (clear) to 0.3 s (ε = 0.3) just above λN/2.
 double airy_noise_equivalent_area_by_pixels(double pitch_m, double wavelength_m, double f_number, double obscuration = 0.0);
 
 // ---- Gaussian ------------------------------------------------------------------------------------------
