@@ -6,17 +6,21 @@
 // molecular bands, multiple scattering: the reason RT codes are run per airmass). The path radiance is
 // interpolated linearly. No extrapolation: an airmass outside the nodes is refused.
 // Two paths, two airmasses: the line of sight (`airmass`: the up path, and the path radiance seen along it) and,
-// optionally, the Sun's path to the ground (`sun_airmass`, the down path; plane-parallel X = sec θ_s for a Sun at
-// zenith angle θ_s). An Earth scene under a low Sun seen at nadir crosses the atmosphere at X_s ≠ X_v
+// optionally, the Sun's path to the ground (`sun_airmass`, the down path), or derived from the source's
+// `solar_zenith` θ_s by Kasten & Young 1989 (physics/solar_position.hpp). An Earth scene under a low Sun seen at nadir crosses the atmosphere at X_s ≠ X_v
 // (L = τ(X_v) ρ E cos θ_s τ(X_s)/π + L_path(X_v); Schott 2007 §4.1). The path radiance tables are then runs at the
 // scene's sun angle, one per view airmass.
 #include "radchain/curve_components.hpp"
+#include "radchain/physics/solar_position.hpp"
 #include "radchain/plugin.hpp"
 #include "radchain/spectrum_csv.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
+#include <optional>
+#include <string>
 #include <utility>
 
 namespace {
@@ -31,7 +35,8 @@ const Schema& schema() {
       number("airmass", "1.3").needed().at_least(1).affects_spectrum()
           .described("the line of sight's airmass X, within the nodes (interpolated, never extrapolated)"),
       number("sun_airmass", "2.0").at_least(1).affects_spectrum()
-          .described("the Sun's path to the ground (down path), within the nodes; default: the line of sight's"),
+          .described("the Sun's path to the ground (down path), within the nodes; default: from the source's solar_zenith "
+                     "(Kasten & Young 1989) when it has one, else the line of sight's"),
       spectrum_file("path_radiance_tables", "W m-2 sr-1 m-1", "path_radiance_X10.csv").as_list()
           .described("path radiance at the sensor at each node (optional; same count and order as the tables)"),
       flag("down_path").fallback("true")
@@ -90,11 +95,31 @@ class AirmassLut final : public Stage {
     const double lo = c.light.has_report_band() ? c.light.report_band_min_m : 400e-9;
     const double hi = c.light.has_report_band() ? c.light.report_band_max_m : 700e-9;
     if (params_.flag("down_path")) {
-      const Spectrum sun_path = params_.has("sun_airmass") ? transmittance_at(params_.get("sun_airmass")) : path;
+      // The down path's airmass: given, or from the source's θ_s (set in its spectral phase), or the line of sight's.
+      const std::optional<ResultId> zenith = c.find(vocabulary::source_solar_zenith);
+      std::string equation = "input X_s";
+      sun_airmass_ = x;
+      if (params_.has("sun_airmass")) {
+        if (zenith)
+          params_.reject("sun_airmass", "the source gives solar_zenith, which sets the Sun's airmass: give one of them");
+        sun_airmass_ = params_.get("sun_airmass");
+      } else if (zenith) {
+        const double theta = c.results.value(*zenith);
+        sun_airmass_ = physics::kasten_young_airmass(theta);
+        equation = "X_s = 1/(cos θ_s + 0.50572 (96.07995° − θ_s)^−1.6364), θ_s the source's (Kasten & Young 1989)";
+        if (sun_airmass_ < nodes.front() || sun_airmass_ > nodes.back())
+          params_.reject("airmasses", fmt::format("the Sun at {:.4g}° (source.solar_zenith) crosses {:.4g} airmasses "
+                                                  "(Kasten & Young 1989), outside the tables' nodes [{:g}, {:g}]: add a "
+                                                  "table at that airmass (no extrapolation)",
+                                                  theta * 180 / std::numbers::pi, sun_airmass_, nodes.front(), nodes.back()));
+      } else {
+        equation = "X_s = X (no sun_airmass given)";
+      }
+      const Spectrum sun_path = sun_airmass_ == x ? path : transmittance_at(sun_airmass_);
       c.light.illumination = c.light.illumination.product(sun_path, c.light.illumination.unit());
       sun_tau_ = sun_path.integral(lo, hi) / (hi - lo);
       id_sun_tau_ = c.declare("sun_transmittance", "1", "band mean of τ at the Sun's airmass (the down path)");
-      id_sun_airmass_ = c.declare("sun_airmass", "1", params_.has("sun_airmass") ? "input X_s" : "X_s = X (no sun_airmass given)");
+      id_sun_airmass_ = c.declare("sun_airmass", "1", equation);
     }
     c.light.up_path_transmittance =
         c.light.up_path_transmittance.empty() ? path : c.light.up_path_transmittance.product(path, "1");
@@ -123,13 +148,13 @@ class AirmassLut final : public Stage {
     if (id_path_) c.results.set(*id_path_, path_in_band_);
     if (id_sun_tau_) {
       c.results.set(*id_sun_tau_, sun_tau_);
-      c.results.set(*id_sun_airmass_, params_.has("sun_airmass") ? params_.get("sun_airmass") : params_.get("airmass"));
+      c.results.set(*id_sun_airmass_, sun_airmass_);
     }
   }
 
  private:
   const Params& params_;
-  double mean_tau_ = 1, path_in_band_ = 0, weight_ = 0, sun_tau_ = 1;
+  double mean_tau_ = 1, path_in_band_ = 0, weight_ = 0, sun_tau_ = 1, sun_airmass_ = 1;
   ResultId id_tau_{}, id_airmass_{}, id_weight_{};
   std::optional<ResultId> id_path_, id_sun_tau_, id_sun_airmass_;
 };
@@ -138,7 +163,9 @@ class AirmassLut final : public Stage {
 
 RADCHAIN_PLUGIN(AirmassLut, {
     .summary = "atmosphere as an RT look-up table over airmass: τ(λ) (and path radiance) per node, interpolated",
-    .reference = "Bouguer-Lambert-Beer law (ln τ linear in X between nodes); tables e.g. MODTRAN (lsst/throughputs atmos/)",
+    .reference = "Bouguer-Lambert-Beer law (ln τ linear in X between nodes); tables e.g. MODTRAN (lsst/throughputs atmos/); "
+                 "Kasten & Young 1989 (the Sun's airmass from its zenith angle)",
     .schema = schema,
     .publishes = {vocabulary::atmosphere_airmass},
+    .needs = {if_present(vocabulary::source_solar_zenith)},
 })

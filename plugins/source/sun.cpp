@@ -30,6 +30,9 @@ const Schema& schema() {
       quantity("total_irradiance", "W m-2", "1361 W/m2").above(0).affects_spectrum()
           .described("rescale the spectrum to this total at 1 AU (required for model = planck)"),
       quantity("distance", "m", "1 AU").fallback("1 AU").above(0).described("Sun-target distance (inverse-square)"),
+      quantity("solar_zenith", "rad", "40 deg").at_least(0).below(1.5707963267948966).affects_spectrum()
+          .described("the Sun's zenith angle θ_s at the scene, given once for the chain: a ground target's cos θ_s "
+                     "and an atmosphere table's down-path airmass (Kasten & Young 1989) follow from it"),
       integer("day_of_year", "172").at_least(1).at_most(366)
           .described("the scene's day: sets the distance and publishes the declination (Spencer 1971)"),
       spectrum_file("v_lambda", "1", "cie_1924_photopic_V_1nm.csv").fallback("cie_1924_photopic_V_1nm.csv")
@@ -100,6 +103,10 @@ class Sun final : public Stage {
                                   "δ(d) = 0.006918 − 0.399912 cos Γ + … (Spencer 1971, Γ = 2π(d−1)/365)", "deg");
     has_band_ = params_.has("band_min");
     if (has_band_) prepare_band(c, spectrum);
+    if (params_.has("solar_zenith")) {
+      id_zenith_ = c.declare(vocabulary::source_solar_zenith, "input θ_s", "deg");
+      c.results.set(*id_zenith_, params_.get("solar_zenith"));  // now: an atmosphere's spectral phase reads it next
+    }
   }
 
   // With pinned z values the spectrum is rescaled inside the band so that every later stage integrating over
@@ -154,6 +161,7 @@ class Sun final : public Stage {
     c.results.set(id_magnitude_, *magnitude_);
     c.results.set(id_distance_, distance);
     if (id_declination_) c.results.set(*id_declination_, physics::solar_declination_rad(day));
+    if (id_zenith_) c.results.set(*id_zenith_, params_.get("solar_zenith"));
     if (has_band_) {
       for (int i = 0; i < 2; ++i) {
         c.results.set(id_z_[i], z_[i]);
@@ -170,7 +178,7 @@ class Sun final : public Stage {
   std::optional<ResultId> id_illuminance_computed_;  // only when the illuminance is pinned
   double total_ = 0, illuminance_ = 0, computed_illuminance_ = 0;
   ResultId id_total_{}, id_illuminance_{}, id_efficacy_{}, id_magnitude_{}, id_distance_{};
-  std::optional<ResultId> id_declination_;
+  std::optional<ResultId> id_declination_, id_zenith_;
   bool dated_ = false;
   bool has_band_ = false, pinned_z_[2] = {false, false};
   double z_[2] = {0, 0}, z_computed_[2] = {0, 0};
@@ -184,5 +192,5 @@ RADCHAIN_PLUGIN(Sun, {
     .reference = "ASTM E-490-00a; Wehrli 1985; CIE 015 photometry; Planck; Spencer 1971 (day of year)",
     .schema = schema,
     .publishes = {vocabulary::source_illuminance, vocabulary::source_visual_magnitude, vocabulary::source_distance,
-                  vocabulary::source_band_irradiance, vocabulary::source_solar_declination},
+                  vocabulary::source_band_irradiance, vocabulary::source_solar_declination, vocabulary::source_solar_zenith},
 })

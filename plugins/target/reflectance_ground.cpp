@@ -56,6 +56,11 @@ class ReflectanceGround final : public Stage {
       per_reflectance = per_reflectance.product(c.light.up_path_transmittance, "W m-2 sr-1 m-1");
     c.light.signal = Radiation{RadiationForm::scene_radiance, per_reflectance, 1.0};
     c.light.background = Radiation{RadiationForm::scene_radiance, per_reflectance, 1.0};
+    // The Sun's zenith given to the source (once for the chain: the atmosphere's down path uses it too).
+    source_zenith_ = c.find(vocabulary::source_solar_zenith);
+    if (source_zenith_ && (dated_ || params_.given("solar_zenith")))
+      params_.reject(dated_ ? "latitude" : "solar_zenith",
+                     "the source gives solar_zenith, which sets the Sun for the whole chain: give the Sun's position once");
     if (dated_) {
       declination_ = c.find(vocabulary::source_solar_declination);
       if (!declination_)
@@ -78,7 +83,7 @@ class ReflectanceGround final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    double zenith = *zenith_;
+    double zenith = source_zenith_ ? c.results.value(*source_zenith_) : *zenith_;
     if (dated_) {
       zenith = physics::solar_zenith_rad(*latitude_, c.results.value(*declination_), *solar_time_);
       if (!(zenith < std::numbers::pi / 2))
@@ -107,7 +112,7 @@ class ReflectanceGround final : public Stage {
   const Params& params_;
   const double *rho_, *zenith_, *background_rho_, *latitude_, *solar_time_;
   bool dated_;
-  std::optional<ResultId> declination_, id_zenith_;
+  std::optional<ResultId> declination_, id_zenith_, source_zenith_;
   double per_reflectance_in_band_ = 0, path_in_band_ = 0;
   ResultId id_cos_{}, id_rho_{};
   std::optional<ResultId> id_radiance_, id_surface_, id_path_;
@@ -120,5 +125,5 @@ RADCHAIN_PLUGIN(ReflectanceGround, {
     .reference = "Schott, Remote Sensing: The Image Chain Approach 2nd ed. (2007) §4.1; Iqbal 1983 §1.5 (sun position)",
     .schema = schema,
     .publishes = {vocabulary::target_reflectance},
-    .needs = {if_present(vocabulary::source_solar_declination)},
+    .needs = {if_present(vocabulary::source_solar_declination), if_present(vocabulary::source_solar_zenith)},
 })

@@ -4,6 +4,7 @@
 // the path radiance linear in X; the bad inputs refused at their keys.
 #include "radchain/chain.hpp"
 #include "radchain/error.hpp"
+#include "radchain/physics/solar_position.hpp"
 #include "radchain/sensor_file.hpp"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <fstream>
 #include <string>
 #include <utility>
@@ -156,6 +158,48 @@ TEST(AirmassLut, TheSunsPathAndTheLineOfSightHaveTheirOwnAirmasses) {
   const Report same = run("airmass = 1.25");
   EXPECT_EQ(v(same, "atmosphere.sun_airmass"), 1.25);
   EXPECT_EQ(v(same, "detector.signal_electrons"), v(run("airmass = 1.25\nsun_airmass = 1.25"), "detector.signal_electrons"));
+}
+
+// The Sun's zenith given once, to the source: the target's cos θ_s and the down path's airmass follow from it.
+// Kasten & Young 1989 against an independent fit, Hardie 1962's polynomial in sec z − 1 (to 0.2 % up to 75°), and
+// the chain against the same numbers given by hand (the target's solar_zenith, the atmosphere's sun_airmass).
+TEST(AirmassLut, TheSunsAirmassFollowsTheSourcesZenith) {
+  using radchain::physics::kasten_young_airmass;
+  const double deg = std::numbers::pi / 180;
+  for (double z : {0.0, 30.0, 45.0, 60.0, 70.0, 75.0}) {
+    const double s = 1 / std::cos(z * deg) - 1;
+    const double hardie = s + 1 - 0.0018167 * s - 0.002875 * s * s - 0.0008083 * s * s * s;
+    EXPECT_NEAR(kasten_young_airmass(z * deg) / hardie, 1.0, 2e-3) << z;
+  }
+  EXPECT_NEAR(kasten_young_airmass(90 * deg), 37.92, 0.01);
+  auto with_sun = [](const std::string& sun, const std::string& atmosphere, const std::string& target) {
+    std::string text = sensor(atmosphere);
+    text.insert(text.find("plugin = \"sun\"\n") + 15, sun);
+    text.insert(text.find("reflectance = 0.3\n") + 18, target);
+    return load_sensor_text(text, "airmass_lut_test.toml").run();
+  };
+  const Report derived = with_sun("solar_zenith = \"60 deg\"\n", "airmass = 1.0", "");
+  const double x_sun = kasten_young_airmass(60 * deg);
+  EXPECT_NEAR(v(derived, "atmosphere.sun_airmass"), x_sun, 1e-12);
+  EXPECT_NEAR(v(derived, "target.cos_solar_zenith"), 0.5, 1e-12);
+  EXPECT_NEAR(v(derived, "source.solar_zenith"), 60 * deg, 1e-15);
+  const Report by_hand = with_sun("", "airmass = 1.0\nsun_airmass = " + std::to_string(x_sun), "solar_zenith = \"60 deg\"\n");
+  EXPECT_NEAR(v(derived, "detector.signal_electrons") / v(by_hand, "detector.signal_electrons"), 1.0, 1e-6);  // (to_string: 6 decimals)
+  EXPECT_LT(v(derived, "atmosphere.sun_transmittance"), v(derived, "atmosphere.transmittance"));
+  // Given twice, or a Sun too low for the tables: refused at a key, with the numbers.
+  auto error_of = [&](const std::string& sun, const std::string& atmosphere, const std::string& target) {
+    try {
+      (void)with_sun(sun, atmosphere, target);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const std::string sun60 = "solar_zenith = \"60 deg\"\n";
+  EXPECT_NE(error_of(sun60, "airmass = 1.0", "solar_zenith = \"60 deg\"\n").find("the source gives solar_zenith"), std::string::npos);
+  EXPECT_NE(error_of(sun60, "airmass = 1.0\nsun_airmass = 2", "").find("sun_airmass = 2: the source gives solar_zenith"), std::string::npos);
+  EXPECT_NE(error_of("solar_zenith = \"70 deg\"\n", "airmass = 1.0", "").find("crosses 2.9"), std::string::npos)
+      << error_of("solar_zenith = \"70 deg\"\n", "airmass = 1.0", "");
 }
 
 TEST(AirmassLut, BadTablesAreRefusedAtTheirKeys) {

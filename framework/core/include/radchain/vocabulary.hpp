@@ -47,6 +47,9 @@ inline constexpr Term source_illuminance{"source.illuminance", "lx", "the source
 inline constexpr Term source_distance{"source.distance", "m", "distance of the source from the target"};
 inline constexpr Term source_solar_declination{"source.solar_declination", "rad",
                                                "the Sun's declination δ on the scene's day (Spencer 1971)"};
+inline constexpr Term source_solar_zenith{"source.solar_zenith", "rad",
+                                          "the Sun's zenith angle at the scene, when the source is given it (spectral: "
+                                          "an atmosphere's down path reads it in its spectral phase)"};
 inline constexpr Term source_band_irradiance{"source.band_irradiance", "W m-2",
                                              "the source's irradiance in the reporting band E'_s"};
 
@@ -201,7 +204,7 @@ inline constexpr Term detector_psf_weighted{"detector.psf_weighted", "1",
 // Every term, for look-ups by name (describe, the check that a plugin does not declare a term as a plain string).
 inline constexpr std::array all{
     platform_altitude, platform_ground_speed, platform_tilt, source_visual_magnitude, source_illuminance,
-    source_distance, source_solar_declination, source_band_irradiance, atmosphere_ground_irradiance, target_illuminance,
+    source_distance, source_solar_declination, source_solar_zenith, source_band_irradiance, atmosphere_ground_irradiance, target_illuminance,
     target_reflectance_difference, target_background_exitance, optics_aperture, optics_obscuration,
     optics_collecting_area, optics_transmittance, optics_focal_length, optics_f_number, optics_psf_wavelength,
     optics_gaussian_fwhm, detector_snr, detector_integration_time, detector_signal_electrons, detector_image_electrons,

@@ -41,4 +41,12 @@ inline double solar_zenith_rad(double latitude_rad, double declination_rad, doub
   return std::acos(std::clamp(cos_zenith, -1.0, 1.0));
 }
 
+// Relative optical air mass of a path at zenith angle z (Kasten & Young 1989, Applied Optics 28, 4735, eq. 3):
+// X = 1 / (cos z + 0.50572 (96.07995° − z)^−1.6364), z in degrees inside the bracket: 0.3 % below sec z at 60°,
+// 1.3 % at 75°, 37.92 at the horizon (where the plane-parallel sec z diverges).
+inline double kasten_young_airmass(double zenith_rad) {
+  const double z_deg = zenith_rad * 180.0 / std::numbers::pi;
+  return 1.0 / (std::cos(zenith_rad) + 0.50572 * std::pow(96.07995 - z_deg, -1.6364));
+}
+
 }  // namespace radchain::physics
