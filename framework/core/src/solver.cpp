@@ -49,7 +49,6 @@ constexpr double closed_form_tolerance = 1e-12;
 struct Sample {
   double x = 0, ratio = 0;            // the unknown; 1 + margin
   double signal = 0, variance = 0;    // noise_equation: S and n² (electrons)
-  double threshold = 0;               // noise_equation: the criterion's T where published (else 0)
 };
 
 // ln(u(x1)/u(x0)) for the unknown's variable u: x itself (power_law), or the flux ratio 10^(−0.4 x) (magnitude).
@@ -203,7 +202,6 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
       if (inversion.form == InverseForm::noise_equation) {
         const double n = results_.value(inversion.noise);
         s.signal = results_.value(inversion.signal), s.variance = n * n;
-        if (inversion.threshold != SIZE_MAX) s.threshold = results_.value(inversion.threshold);
       }
       return s;
     };
@@ -212,7 +210,7 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
       const double f_faint = f(faint);
       const Sample at = sample(faint);
       const double x = f_faint != 0 && !std::isnan(f_faint)
-                           ? closed_form_root_from_one_end(faint, at.signal, at.variance, at.threshold)
+                           ? closed_form_root_from_one_end(faint, at.signal, at.variance, results_.value(inversion.threshold))
                            : std::numeric_limits<double>::quiet_NaN();
       if (x >= std::min(spec.lo, spec.hi) && x <= std::max(spec.lo, spec.hi)) {
         set_unknown(x, check_detail);
@@ -343,9 +341,6 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
       if (inversion.form != InverseForm::noise_equation) return;
       const Lanes &s = lane_result(inversion.signal), &n = lane_result(inversion.noise);
       for (int i = 0; i < lane_count; ++i) out[i].signal = s(i), out[i].variance = n(i) * n(i);
-      if (inversion.threshold == SIZE_MAX) return;
-      const Lanes& t = lane_result(inversion.threshold);
-      for (int i = 0; i < lane_count; ++i) out[i].threshold = t(i);
     };
     // Dekker's method per lane (Dekker 1969; Brent 1973 ch. 4): b the best end, a the contrapoint, c the previous
     // b. A secant step through b and c when it falls between b and the midpoint, else bisection; never a step
