@@ -113,6 +113,8 @@ int main(int argc, char** argv) {
   cli::add_no_solve(sweep_cmd, sweep.sensor.no_solve);
   cli::add_solver(sweep_cmd, sweep.sensor.solver);
   sweep_cmd->add_flag("--allow-large", sweep.allow_large, "run a grid of more than 10^8 points (refused otherwise)");
+  sweep_cmd->add_flag("--explain", sweep.explain,
+                      "say on stderr how the points were solved (factored over the grid, or per point and why)");
 
   cli::BudgetCommand budget;
   auto* budget_cmd = app.add_subcommand("budget", "sensitivities: ∂result/∂input and elasticities for every numeric input, ranked (error budget)");

@@ -65,6 +65,7 @@ struct SweepCommand {
   Output output;
   Batch batch;
   bool allow_large = false;  // --allow-large: a grid above SweepOptions::large_points
+  bool explain = false;      // --explain: Sweep::method() on stderr
 };
 
 // radchain budget SENSOR --results a,b [--set k=v] [--format text|csv|json] [--out F] [--plot tornado.png]:

@@ -2,6 +2,7 @@
 #include "radchain/batch/sweep.hpp"
 
 #include "radchain/batch/catalogue.hpp"
+#include "radchain/batch/factored_grid.hpp"
 #include "radchain/batch/run_batch.hpp"
 #include "radchain/batch/shard.hpp"
 #include "radchain/batch/table.hpp"
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 namespace radchain {
 namespace {
@@ -232,6 +234,20 @@ int Sweep::run(TableWriter& writer, std::string* failure,
   std::mutex failure_mutex;
   std::size_t first_failed = std::numeric_limits<std::size_t>::max();
   std::string first_message;
+  auto note_failure = [&](std::size_t point, const std::string& message) {
+    std::lock_guard lock(failure_mutex);
+    if (point < first_failed) first_failed = point, first_message = message;
+  };
+
+  // A grid of limiting magnitudes factored by axis where the chain allows it (factored_grid.hpp), planned on this
+  // thread with the worker that then serves slot 0; else every point solved on its own.
+  workers[0] = std::make_unique<SweepWorker>(*this);
+  std::string why_not;
+  const std::optional<FactoredGrid> factored =
+      options_.no_solve || axes_.empty() ? std::nullopt : FactoredGrid::plan(*this, *workers[0], why_not);
+  method_ = factored                 ? factored->description()
+            : options_.no_solve      ? std::string("forward evaluation at every point (--no-solve)")
+                                     : "per point: " + why_not;
 
   // Blocks bound the memory (values and formatted cells) of long sweeps.
   constexpr std::size_t block = 16384;
@@ -247,27 +263,35 @@ int Sweep::run(TableWriter& writer, std::string* failure,
       [&](std::size_t slot, std::size_t begin, std::size_t end) {
         auto& worker = workers[slot];
         if (!worker) worker = std::make_unique<SweepWorker>(*this);
-        std::size_t group[lane_count];
-        for (std::size_t i = begin; i < end; i += lane_count) {
-          const std::size_t count = std::min<std::size_t>(lane_count, end - i);
-          const std::size_t at = i % block;  // position within the block's buffers
-          for (std::size_t k = 0; k < count; ++k) group[k] = range[i + k];
-          worker->evaluate_group(group, count, &values[at * n_columns], &ok[at]);
-          for (std::size_t k = 0; k < count; ++k) {
-            if (!ok[at + k]) {
-              std::lock_guard lock(failure_mutex);
-              if (group[k] < first_failed) first_failed = group[k], first_message = worker->failure_of(k);
-            }
-            if (values_only) continue;
-            if (lines_only) {
-              TableWriter::csv_line(&values[(at + k) * n_columns], n_columns, lines[at + k]);
-              continue;
-            }
-            std::vector<std::string>& row = cells[at + k];
-            row.clear();
-            row.reserve(n_columns);
-            for (std::size_t c = 0; c < n_columns; ++c) row.push_back(writer.number(values[(at + k) * n_columns + c]));
+        if (factored) {
+          factored->evaluate(range[begin], end - begin, range.stride, &values[(begin % block) * n_columns], &ok[begin % block]);
+          for (std::size_t i = begin; i < end; ++i) {
+            const std::size_t at = i % block;
+            if (ok[at]) continue;  // a root outside the bracket or at its end: the per-point solver decides
+            ok[at] = worker->evaluate(range[i], &values[at * n_columns]) ? 1 : 0;
+            if (!ok[at]) note_failure(range[i], worker->failure());
           }
+        } else {
+          std::size_t group[lane_count];
+          for (std::size_t i = begin; i < end; i += lane_count) {
+            const std::size_t count = std::min<std::size_t>(lane_count, end - i);
+            const std::size_t at = i % block;  // position within the block's buffers
+            for (std::size_t k = 0; k < count; ++k) group[k] = range[i + k];
+            worker->evaluate_group(group, count, &values[at * n_columns], &ok[at]);
+            for (std::size_t k = 0; k < count; ++k)
+              if (!ok[at + k]) note_failure(group[k], worker->failure_of(k));
+          }
+        }
+        for (std::size_t i = begin; i < end && !values_only; ++i) {
+          const std::size_t at = i % block;
+          if (lines_only) {
+            TableWriter::csv_line(&values[at * n_columns], n_columns, lines[at]);
+            continue;
+          }
+          std::vector<std::string>& row = cells[at];
+          row.clear();
+          row.reserve(n_columns);
+          for (std::size_t c = 0; c < n_columns; ++c) row.push_back(writer.number(values[at * n_columns + c]));
         }
         if (options_.progress) options_.progress->fetch_add(end - begin, std::memory_order_relaxed);
       },

@@ -84,6 +84,7 @@ int sweep(const SweepCommand& command) {
   progress.stop();
   writer.finish(code);
   sink.commit();
+  if (command.explain) std::cerr << "radchain sweep: " << sweep.method() << "\n";
   if (code != 0) std::cerr << "radchain sweep: " << failure << "\n";
   if (!command.plot.empty()) {
     const SweepAxis& axis = sweep.axes().front();

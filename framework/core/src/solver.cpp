@@ -7,6 +7,7 @@
 #include "radchain/chain.hpp"
 
 #include "radchain/error.hpp"
+#include "radchain/physics/detection.hpp"
 #include "radchain/vocabulary.hpp"
 
 #include <boost/math/tools/roots.hpp>
@@ -104,10 +105,7 @@ double closed_form_root(InverseForm form, Scaling scaling, const Sample& a, cons
 double closed_form_root_from_one_end(double x, double signal, double variance, double threshold) {
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   if (!(signal > 0 && variance > 0 && threshold > 0)) return nan;
-  const double t2 = threshold * threshold;
-  const double discriminant = t2 * t2 + 4.0 * t2 * (variance - signal);
-  if (!(discriminant >= 0)) return nan;
-  const double root_signal = 0.5 * (t2 + std::sqrt(discriminant));
+  const double root_signal = physics::signal_at_snr(threshold, variance, signal);
   if (!(root_signal > 0)) return nan;
   return x - 2.5 * std::log10(root_signal / signal);
 }
@@ -299,6 +297,20 @@ void Chain::solve(std::size_t index, SolveOutcome& outcome) {
   outcome.fallback = methods[chosen].second;
   outcome.converged = true;
   if (!final_evaluated) set_unknown(outcome.value_si, Detail::full);
+}
+
+std::optional<Chain::MagnitudeInversion> Chain::magnitude_inversion() const {
+  if (solver != SolverChoice::automatic || solves.size() != 1 || resolved_.size() != 1 || resolved_[0].margins.size() != 1)
+    return std::nullopt;
+  const ResolvedSolve& resolved = resolved_[0];
+  const Inversion& inversion = resolved.inversions[0];
+  if (!one_end_applies(inversion.form, inversion.threshold, inversion.through_signal)) return std::nullopt;
+  std::size_t criterion = 0;
+  while (criterion < stages.size() && stages[criterion].section != "criteria." + solves[0].criteria[0]) ++criterion;
+  return MagnitudeInversion{resolved.unknown,       criterion,
+                            inversion.signal,        inversion.noise,
+                            inversion.threshold,     std::max(solves[0].lo, solves[0].hi),
+                            std::min(solves[0].lo, solves[0].hi)};
 }
 
 bool Chain::lanes_can_solve() const { return solves.size() == 1 && !resolved_.empty() && !resolved_[0].unknown.spectral(); }

@@ -211,6 +211,18 @@ class Chain {
   // of `solves` (load_sensor).
   void resolve_solves(const std::vector<ResultId>& echo_ids);
 
+  // The one [[solve]] when its unknown is a target's magnitude and its one criterion inverts through the noise
+  // equation from the faint bracket end (solver.cpp): what that closed form reads. A sweep factors a grid of such
+  // limiting magnitudes by axis (radchain/batch/factored_grid.hpp). Nothing with --solver root or for another solve.
+  struct MagnitudeInversion {
+    ParameterRef unknown;
+    std::size_t criterion_stage = 0;    // index in `stages`
+    ResultId signal = 0, noise = 0;     // the detector's S and n (electrons)
+    ResultId threshold = 0;             // the criterion's T
+    double faint = 0, bright = 0;       // the bracket's ends: the larger magnitude and the smaller
+  };
+  std::optional<MagnitudeInversion> magnitude_inversion() const;
+
   Results& results() { return results_; }
   const Results& results() const { return results_; }
   double result(const std::string& name) const;  // throws std::out_of_range when unknown

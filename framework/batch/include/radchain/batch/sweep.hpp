@@ -80,12 +80,16 @@ class Sweep {
   // failed at some point (its unknown's cell is nan; `failure` says where and why), else 0.
   int run(TableWriter& writer, std::string* failure = nullptr,
           const std::function<void(std::size_t point, const double* values)>& observer = {});
+  // How the last run() solved its points: "closed form factored over the grid: …" (radchain/batch/factored_grid.hpp),
+  // or "per point: <why the grid does not factor>".
+  const std::string& method() const { return method_; }
 
  private:
   SweepOptions options_;
   std::vector<SweepAxis> axes_;
   std::vector<std::string> results_, units_;
   std::size_t points_ = 1;
+  std::string method_;
 };
 
 // One worker's chain (load_sensor once), evaluating grid points.

@@ -9,6 +9,9 @@
 // Gaussian "d" = SNR of the likelihood-ratio test); M. I. Skolnik, Introduction to Radar Systems (single
 // sample, coherent case). Φ and z from Boost.Math.
 
+#include <cmath>
+#include <limits>
+
 namespace radchain::physics {
 
 // Φ(x), the standard normal distribution function.
@@ -25,5 +28,18 @@ double snr_threshold_for(double detection_probability, double false_alarm_probab
 double detection_probability_at(double snr, double false_alarm_probability);
 // P_fa that a given SNR allows while still reaching P_d: 1 − Φ(SNR − z(P_d)).
 double false_alarm_probability_at(double snr, double detection_probability);
+
+// The signal S (electrons) at which S/√(S + c) = T: Poisson noise of the signal itself plus a variance c that does
+// not scale with it (dark, read, quantisation, background). S² = T²(S + c), whose positive root is
+//   S = (T² + √(T⁴ + 4T²c))/2       (Pan 2010 eq. (11)).
+// `variance` is n² = S_at + c at some signal S_at (c = variance − signal_at, as a detector reports it). NaN where no
+// positive root exists (c < −T²/4).
+// (Inline: a sweep's solver evaluates it for every point.)
+inline double signal_at_snr(double threshold, double variance, double signal_at) {
+  const double t2 = threshold * threshold;
+  const double discriminant = t2 * t2 + 4.0 * t2 * (variance - signal_at);
+  if (!(discriminant >= 0)) return std::numeric_limits<double>::quiet_NaN();
+  return 0.5 * (t2 + std::sqrt(discriminant));
+}
 
 }  // namespace radchain::physics
