@@ -37,6 +37,33 @@ std::vector<std::size_t> test_steps(std::size_t steps) {
   return at;
 }
 
+// A run of points along the last axis, the other axes fixed: rows of the axis values and the magnitude.
+struct Run {
+  double* rows;
+  char* ok;
+  std::size_t count, n_columns;
+  const double* outer_values;  // the axes before the last
+  const double* values;        // the last axis's, from the run's first step
+  const double* inner;         // its B terms
+  const double* floor;         // P from the run's first step, stepping floor_step
+  std::size_t floor_step;
+  double outer, low, high;
+};
+
+// N > 0: N axes known when compiled; N = 0: `n_axes` of them.
+template <std::size_t N>
+void fill_run(const Run& r, std::size_t n_axes = N) {
+  const std::size_t axes = N > 0 ? N : n_axes, last = axes - 1;
+  for (std::size_t i = 0; i < r.count; ++i) {
+    double* row = r.rows + i * r.n_columns;
+    for (std::size_t a = 0; a < last; ++a) row[a] = r.outer_values[a];
+    row[last] = r.values[i];
+    const double m = r.outer + r.inner[i] + r.floor[i * r.floor_step];
+    row[axes] = m;
+    r.ok[i] = m >= r.low && m <= r.high;  // (false for NaN)
+  }
+}
+
 }  // namespace
 
 std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& worker, std::string& why_not) {
@@ -276,16 +303,17 @@ void FactoredGrid::evaluate(std::size_t first, std::size_t count, std::size_t st
     const double* inner = axis_terms_[last].data() + i0;
     const double* values = axis_values_[last].data() + i0;
     const double* floor = floor_terms_.data() + floor_outer + i0 * floor_step;
-    for (std::size_t r = 0; r < run; ++r) {
-      double* row = out + (k + r) * n_columns;
-      for (std::size_t a = 0; a < last; ++a) row[a] = outer_values[a];
-      row[last] = values[r];
-      const double m = outer + inner[r] + floor[r * floor_step];
-      const bool inside = m >= low && m <= high;  // (false for NaN)
-      ok[k + r] = inside;
-      if (inside)
-        for (std::size_t c = 0; c < n_results; ++c) row[n_axes + c] = m * column_factors_[c];
+    double* rows = out + k * n_columns;
+    const Run r{rows, ok + k, run, n_columns, outer_values.data(), values, inner, floor, floor_step, outer, low, high};
+    switch (n_axes) {  // one pass over the rows, unrolled for the usual number of axes
+      case 2: fill_run<2>(r); break;
+      case 3: fill_run<3>(r); break;
+      case 4: fill_run<4>(r); break;
+      default: fill_run<0>(r, n_axes);
     }
+    for (std::size_t c = n_results; c-- > 0;)  // the columns' display units (a magnitude's factor is 1); column 0 last
+      if (c > 0 || column_factors_[c] != 1.0)
+        for (std::size_t i = 0; i < run; ++i) rows[i * n_columns + n_axes + c] = rows[i * n_columns + n_axes] * column_factors_[c];
     k += run;
     point += run * stride;
   }

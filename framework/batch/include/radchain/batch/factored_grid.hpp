@@ -42,7 +42,7 @@ class FactoredGrid {
 
   // Points first, first + stride, … (`count` of them) into consecutive rows of `out` (Sweep::columns() each): the
   // axes in their units, then the result columns (each the solved magnitude in its display unit). ok[k] = 0 where
-  // the point must be solved on its own (SweepWorker::evaluate): its row's result cells are then not written.
+  // the point must be solved on its own (SweepWorker::evaluate): its row's result cells then mean nothing.
   void evaluate(std::size_t first, std::size_t count, std::size_t stride, double* out, char* ok) const;
 
   // "closed form factored over the grid: the noise floor varies with detector.integration_time; 436 chain
