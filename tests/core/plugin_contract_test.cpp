@@ -124,6 +124,34 @@ TEST(PluginContract, RequiringAnOptionalNeedIsAProgrammingError) {
   EXPECT_FALSE(c.find(vocabulary::optics_f_number).has_value());
 }
 
+// A look-up is remembered between spectral phases, a miss too: the next phase's same look-up is a comparison, and the
+// contract is not checked again (the cold spectral phase's cost). A miss is looked up afresh once a result has been
+// declared, since it may be the one looked for; an unlisted need is still a programming error at its first look-up.
+TEST(PluginContract, AMissIsRememberedUntilAResultIsDeclared) {
+  HandRun run("detector", "ccd_frame");  // lists the optics' f-number as if_present()
+  std::vector<ResultId> declarations;
+  std::vector<LookUp> lookups;
+  auto phase = [&] { return Context(run.results, run.light, run.section, run.plugin, Detail::full, &declarations, &lookups); };
+  {
+    Context c = phase();
+    EXPECT_FALSE(c.find(vocabulary::optics_f_number).has_value());
+  }
+  ASSERT_EQ(lookups.size(), 1u);
+  EXPECT_EQ(lookups[0].id, SIZE_MAX);
+  EXPECT_EQ(lookups[0].missed, "optics.f_number");
+  {
+    Context c = phase();
+    EXPECT_FALSE(c.find(vocabulary::optics_f_number).has_value());  // remembered
+    EXPECT_THROW(c.find(vocabulary::optics_aperture), std::logic_error);  // not the remembered one: checked
+  }
+  const ResultId f_number = run.results.declare("optics.f_number", "1", "telescope", "N = f'/D");
+  {
+    Context c = phase();
+    EXPECT_EQ(c.find(vocabulary::optics_f_number), std::optional<ResultId>(f_number));  // declared since: found
+  }
+  EXPECT_EQ(lookups[0].id, f_number);
+}
+
 TEST(PluginContract, DeclaringAnUnlistedOrMisspelledTermIsAProgrammingError) {
   HandRun run("criteria.detection", "snr_threshold");
   Context c = run.context();

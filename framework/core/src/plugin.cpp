@@ -126,10 +126,11 @@ ResultId Context::require(const Term& term) {
 std::optional<ResultId> Context::look_up(const Term& term, bool required) {
   const std::string_view qualified_name = term.name;
   if (lookups_ && next_lookup_ < lookups_->size()) {
-    const ResultId id = (*lookups_)[next_lookup_];
-    if (id < results.size() && results.info(id).name == qualified_name) {
+    const LookUp& last = (*lookups_)[next_lookup_];
+    if (last.id != SIZE_MAX ? last.id < results.size() && results.info(last.id).name == qualified_name
+                            : last.results_then == results.size() && last.missed == qualified_name) {
       ++next_lookup_;
-      return id;
+      return last.id == SIZE_MAX ? std::nullopt : std::optional<ResultId>(last.id);
     }
   }
   // Not a repeat of the last spectral phase: the look-up must be one the plugin states.
@@ -148,9 +149,9 @@ std::optional<ResultId> Context::look_up(const Term& term, bool required) {
                                          plugin, term.name));
   }
   const std::optional<ResultId> id = results.find(qualified_name);
-  if (lookups_ && id) {  // (a miss is not remembered: a later spectral phase may find the result)
+  if (lookups_) {  // (a miss is looked up again once a result has been declared: it may be the one)
     lookups_->resize(next_lookup_);
-    lookups_->push_back(*id);
+    lookups_->push_back(id ? LookUp{*id, {}, 0} : LookUp{SIZE_MAX, std::string(qualified_name), results.size()});
     ++next_lookup_;
   }
   return id;

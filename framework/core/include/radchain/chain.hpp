@@ -31,7 +31,7 @@ struct StageSlot {
   std::unique_ptr<Params> params;
   std::unique_ptr<Stage> stage;
   std::vector<ResultId> declarations;  // what the stage declared at its last spectral phase, in order
-  std::vector<ResultId> lookups;       // the results it found then, in order
+  std::vector<LookUp> lookups;         // what it looked up then (found or missed), in order
 };
 
 // A numeric parameter of one stage, found once by name ("optics.aperture"); Chain::set() through it marks what

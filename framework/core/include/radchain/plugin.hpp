@@ -57,12 +57,20 @@ enum class Detail {
               // only break a total down for the report (noise terms, echoes of inputs)
 };
 
+// One look-up a stage made at its last spectral phase: the result it found, or a miss, remembered with the name
+// looked up and the number of results then (a miss stays a miss while no result is declared).
+struct LookUp {
+  ResultId id = SIZE_MAX;  // SIZE_MAX: not found
+  std::string missed;      // the name, for a miss
+  std::size_t results_then = 0;
+};
+
 // What a stage sees while the chain runs.
 class Context {
  public:
   Context(Results& results, Light& light, const std::string& section, const std::string& plugin,
           Detail detail = Detail::full, std::vector<ResultId>* declarations = nullptr,
-          std::vector<ResultId>* lookups = nullptr)
+          std::vector<LookUp>* lookups = nullptr)
       : results(results), light(light), section(section), plugin(plugin), detail(detail), declarations_(declarations),
         lookups_(lookups) {}
 
@@ -86,7 +94,7 @@ class Context {
   ResultId require(const Term& term);
   // A result this stage reads if an earlier stage declared it. The plugin must list the term in `needs`,
   // usually as if_present(term) (std::logic_error otherwise).
-  // (Like declare(): the same look-ups in the same order at every spectral phase are name comparisons.)
+  // (Like declare(): the same look-ups in the same order at every spectral phase are name comparisons, misses too.)
   std::optional<ResultId> find(const Term& term);
   // The incoming radiation has a form this stage cannot take.
   [[noreturn]] void refuse_form(const std::string& what, RadiationForm form) const;
@@ -98,7 +106,7 @@ class Context {
 
   std::vector<ResultId>* declarations_;  // this stage's declarations at its last spectral phase, in order
   std::size_t next_declaration_ = 0;
-  std::vector<ResultId>* lookups_;       // the results it found, in order
+  std::vector<LookUp>* lookups_;         // what it looked up, in order
   std::size_t next_lookup_ = 0;
 };
 
