@@ -11,8 +11,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 namespace {
 using namespace radchain;
@@ -96,6 +98,28 @@ TEST(ViewAirmass, ASweepOverRollEqualsFreshChains) {
   EXPECT_NEAR(out[2], 1.4254, 1e-4);
   ASSERT_TRUE(worker.evaluate(0, out.data())) << worker.failure();
   EXPECT_EQ(out[2], 1.0);
+}
+
+// The command line as a user types it: the airmass column of `radchain sweep` follows Kasten & Young at the view
+// zenith of each roll (held at 1 at nadir), to the CSV's 10 significant digits.
+TEST(ViewAirmass, TheSweepCommandOverRoll) {
+  Scratch scratch;
+  const std::string file = (scratch / "view_airmass.toml").string();
+  write_text(file, sensor_text("0 deg"));
+  const CliResult r =
+      run_cli(scratch, "sweep '" + file + "' --set 'platform.roll=0 deg:40 deg:5' --results atmosphere.airmass");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "platform.roll_deg,atmosphere.airmass");
+  const double k = (6371e3 + 700e3) / 6371e3;
+  for (int i = 0; i < 5; ++i) {
+    ASSERT_TRUE(std::getline(lines, line)) << r.out;
+    const double roll = 10.0 * i * deg;
+    const double x = std::max(1.0, physics::kasten_young_airmass(std::asin(k * std::sin(roll))));
+    EXPECT_NEAR(std::stod(line.substr(line.find(',') + 1)), x, 1e-9 * x) << line;
+  }
 }
 
 // `radchain budget` over roll at 30°: ∂X_v/∂roll by Ridders' differences (each point re-runs the spectral phase)
