@@ -5,12 +5,17 @@
 // the Bouguer-Lambert-Beer law holds (ln τ = −X κ), and closer than Beer's τ₁^X where it does not (saturated
 // molecular bands, multiple scattering: the reason RT codes are run per airmass). The path radiance is
 // interpolated linearly. No extrapolation: an airmass outside the nodes is refused.
-// Two paths, two airmasses: the line of sight (`airmass`: the up path, and the path radiance seen along it) and,
-// optionally, the Sun's path to the ground (`sun_airmass`, the down path), or derived from the source's
-// `solar_zenith` θ_s by Kasten & Young 1989 (physics/solar_position.hpp). An Earth scene under a low Sun seen at nadir crosses the atmosphere at X_s ≠ X_v
+// Two paths, two airmasses: the line of sight (`airmass`: the up path, and the path radiance seen along it), or
+// derived from an earth_orbit platform's view zenith η at the ground point, and, optionally, the Sun's path to the
+// ground (`sun_airmass`, the down path), or derived from the source's `solar_zenith` θ_s; both derivations by
+// Kasten & Young 1989 held at 1 near the zenith (physics/solar_position.hpp: relative_airmass). The platform and
+// the source set those angles in their spectral phases (Context::set_in_spectral_phase), so in such a chain a
+// change of roll or pitch re-runs the spectral phase from the platform (chain.hpp). An Earth scene under a low
+// Sun seen at nadir crosses the atmosphere at X_s ≠ X_v
 // (L = τ(X_v) ρ E cos θ_s τ(X_s)/π + L_path(X_v); Schott 2007 §4.1). The path radiance tables are then runs at the
 // scene's sun angle, one per view airmass.
 #include "radchain/curve_components.hpp"
+#include "radchain/error.hpp"
 #include "radchain/physics/solar_position.hpp"
 #include "radchain/plugin.hpp"
 #include "radchain/spectrum_csv.hpp"
@@ -32,8 +37,9 @@ const Schema& schema() {
           .described("transmittance τ(λ) at each node airmass (one table per entry of `airmasses`, same order)"),
       number("airmasses", "1.0").as_list().needed().at_least(1)
           .described("the node airmasses of the tables, increasing (e.g. [1.0, 1.5, 2.0, 2.5])"),
-      number("airmass", "1.3").needed().at_least(1).affects_spectrum()
-          .described("the line of sight's airmass X, within the nodes (interpolated, never extrapolated)"),
+      number("airmass", "1.3").at_least(1).affects_spectrum()
+          .described("the line of sight's airmass X, within the nodes (interpolated, never extrapolated); needed unless "
+                     "the platform has a view (earth_orbit), which sets it from its view zenith (Kasten & Young 1989)"),
       number("sun_airmass", "2.0").at_least(1).affects_spectrum()
           .described("the Sun's path to the ground (down path), within the nodes; default: from the source's solar_zenith "
                      "(Kasten & Young 1989) when it has one, else the line of sight's"),
@@ -87,9 +93,39 @@ class AirmassLut final : public Stage {
     return Spectrum(grid, tau, "1", Extrapolation::zero);
   }
 
+  // An airmass derived from an angle (the platform's view zenith, the source's solar zenith): within the nodes.
+  void check_derived(double x, double angle_rad, const char* what, const char* result) const {
+    const std::vector<double>& nodes = params_.entry("airmasses").numbers;
+    if (x < nodes.front() || x > nodes.back())
+      params_.reject("airmasses", fmt::format("{} at {:.4g}° ({}) crosses {:.4g} airmasses (Kasten & Young 1989), "
+                                              "outside the tables' nodes [{:g}, {:g}]: add a table at that airmass (no "
+                                              "extrapolation)",
+                                              what, angle_rad * 180 / std::numbers::pi, result, x, nodes.front(), nodes.back()));
+  }
+
   void prepare(Context& c) override {
     const std::vector<double>& nodes = params_.entry("airmasses").numbers;
-    const double x = params_.get("airmass");
+    // The line of sight's airmass: given, or from the platform's view zenith η (set in its spectral phase).
+    const std::optional<ResultId> view = c.find(vocabulary::platform_view_zenith_angle);
+    std::string view_equation = "input X (between the LUT's nodes)";
+    if (view) {
+      if (params_.has("airmass"))
+        params_.reject("airmass", "the platform gives the line of sight's view zenith (platform.view_zenith_angle), "
+                                  "which sets its airmass: give one of them (a platform without a view, circular_orbit, "
+                                  "takes the airmass by hand)");
+      const double eta = c.read_in_spectral_phase(*view);
+      view_airmass_ = physics::relative_airmass(eta);
+      view_equation = "X = max(1, 1/(cos η + 0.50572 (96.07995° − η)^−1.6364)), η the platform's view zenith "
+                      "(Kasten & Young 1989)";
+      check_derived(view_airmass_, eta, "the line of sight", "platform.view_zenith_angle");
+    } else if (params_.has("airmass")) {
+      view_airmass_ = params_.get("airmass");
+    } else {
+      throw InputError({}, params_.context(), "airmass",
+                       "missing required key: the line of sight's airmass, e.g. 1.3 (a platform with a view, "
+                       "earth_orbit, sets it from its view zenith instead)");
+    }
+    const double x = view_airmass_;
     const auto [i, w] = bracket(x);
     const Spectrum path = transmittance_at(x);
     const double lo = c.light.has_report_band() ? c.light.report_band_min_m : 400e-9;
@@ -104,14 +140,10 @@ class AirmassLut final : public Stage {
           params_.reject("sun_airmass", "the source gives solar_zenith, which sets the Sun's airmass: give one of them");
         sun_airmass_ = params_.get("sun_airmass");
       } else if (zenith) {
-        const double theta = c.results.value(*zenith);
-        sun_airmass_ = physics::kasten_young_airmass(theta);
-        equation = "X_s = 1/(cos θ_s + 0.50572 (96.07995° − θ_s)^−1.6364), θ_s the source's (Kasten & Young 1989)";
-        if (sun_airmass_ < nodes.front() || sun_airmass_ > nodes.back())
-          params_.reject("airmasses", fmt::format("the Sun at {:.4g}° (source.solar_zenith) crosses {:.4g} airmasses "
-                                                  "(Kasten & Young 1989), outside the tables' nodes [{:g}, {:g}]: add a "
-                                                  "table at that airmass (no extrapolation)",
-                                                  theta * 180 / std::numbers::pi, sun_airmass_, nodes.front(), nodes.back()));
+        const double theta = c.read_in_spectral_phase(*zenith);
+        sun_airmass_ = physics::relative_airmass(theta);
+        equation = "X_s = max(1, 1/(cos θ_s + 0.50572 (96.07995° − θ_s)^−1.6364)), θ_s the source's (Kasten & Young 1989)";
+        check_derived(sun_airmass_, theta, "the Sun", "source.solar_zenith");
       } else {
         equation = "X_s = X (no sun_airmass given)";
       }
@@ -125,7 +157,7 @@ class AirmassLut final : public Stage {
         c.light.up_path_transmittance.empty() ? path : c.light.up_path_transmittance.product(path, "1");
     mean_tau_ = path.integral(lo, hi) / (hi - lo);
     id_tau_ = c.declare("transmittance", "1", "band mean of τ_i^(1−w) τ_{i+1}^w along the line of sight over the reporting band (or 400-700 nm)");
-    id_airmass_ = c.declare(vocabulary::atmosphere_airmass, "input X (between the LUT's nodes)");
+    id_airmass_ = c.declare(vocabulary::atmosphere_airmass, view_equation);
     id_weight_ = c.declare("lut_weight", "1", fmt::format("w = (X − X_i)/(X_(i+1) − X_i) between the nodes {:g} and {:g}",
                                                           nodes[i], nodes[i + 1]));
     if (params_.has("path_radiance_tables")) {
@@ -143,7 +175,7 @@ class AirmassLut final : public Stage {
 
   void evaluate(Context& c) override {
     c.results.set(id_tau_, mean_tau_);
-    c.results.set(id_airmass_, params_.get("airmass"));
+    c.results.set(id_airmass_, view_airmass_);
     c.results.set(id_weight_, weight_);
     if (id_path_) c.results.set(*id_path_, path_in_band_);
     if (id_sun_tau_) {
@@ -154,7 +186,7 @@ class AirmassLut final : public Stage {
 
  private:
   const Params& params_;
-  double mean_tau_ = 1, path_in_band_ = 0, weight_ = 0, sun_tau_ = 1, sun_airmass_ = 1;
+  double mean_tau_ = 1, path_in_band_ = 0, weight_ = 0, sun_tau_ = 1, sun_airmass_ = 1, view_airmass_ = 1;
   ResultId id_tau_{}, id_airmass_{}, id_weight_{};
   std::optional<ResultId> id_path_, id_sun_tau_, id_sun_airmass_;
 };
@@ -164,8 +196,8 @@ class AirmassLut final : public Stage {
 RADCHAIN_PLUGIN(AirmassLut, {
     .summary = "atmosphere as an RT look-up table over airmass: τ(λ) (and path radiance) per node, interpolated",
     .reference = "Bouguer-Lambert-Beer law (ln τ linear in X between nodes); tables e.g. MODTRAN (lsst/throughputs atmos/); "
-                 "Kasten & Young 1989 (the Sun's airmass from its zenith angle)",
+                 "Kasten & Young 1989 (the Sun's and the line of sight's airmass from their zenith angles)",
     .schema = schema,
     .publishes = {vocabulary::atmosphere_airmass},
-    .needs = {if_present(vocabulary::source_solar_zenith)},
+    .needs = {if_present(vocabulary::source_solar_zenith), if_present(vocabulary::platform_view_zenith_angle)},
 })

@@ -1,7 +1,8 @@
 // A satellite on a circular orbit over a spherical Earth, looking at the ground along a line of sight rotated by
 // roll (across track) and pitch (along track). Publishes what circular_orbit publishes (altitude, ground speed,
 // off-nadir angle as platform.tilt) and the viewing geometry a modern EO design review needs: slant range and
-// view zenith angle at the ground point (closed-form spherical trigonometry, physics/earth_geometry.hpp).
+// view zenith angle at the ground point (closed-form spherical trigonometry, physics/earth_geometry.hpp). The view
+// zenith is set in the spectral phase as well, for an atmosphere that reads its tables at the view airmass.
 // A look past the horizon is a located error here (for the file's values) and an error during a solve.
 #include "radchain/physics/earth_geometry.hpp"
 #include "radchain/physics/pushbroom.hpp"
@@ -70,6 +71,11 @@ class EarthOrbit final : public Stage {
     id_range_ = c.declare(vocabulary::platform_slant_range,
                           "ρ = (R+h) cos θ − √(R² − (R+h)² sin² θ) (SMAD 3rd ed. §5.2)", "km");
     id_zenith_ = c.declare(vocabulary::platform_view_zenith_angle, "sin η = (R+h) sin θ / R (SMAD §5.2)", "deg");
+    // Now too, for an atmosphere's spectral phase (an RT table read at the view airmass): where one reads it,
+    // altitude, roll, pitch and the Earth's radius re-run the spectral phase (Chain::set); elsewhere they stay scalar.
+    c.set_in_spectral_phase(id_zenith_,
+                            physics::view_zenith_angle_rad(*altitude_, physics::off_nadir_angle_rad(*roll_, *pitch_), *radius_),
+                            {altitude_, roll_, pitch_, radius_});
     id_central_ = c.declare("earth_central_angle", "rad", "λ = η − θ (SMAD §5.2)", "deg");
     id_horizon_ = c.declare("horizon_off_nadir_angle", "rad", "sin θ_h = R/(R+h)", "deg");
     id_orbit_speed_ = c.declare("orbital_speed", "m/s", "√(GM/(R+h)), circular orbit", "km/s");

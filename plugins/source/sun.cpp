@@ -105,7 +105,7 @@ class Sun final : public Stage {
     if (has_band_) prepare_band(c, spectrum);
     if (params_.has("solar_zenith")) {
       id_zenith_ = c.declare(vocabulary::source_solar_zenith, "input θ_s", "deg");
-      c.results.set(*id_zenith_, params_.get("solar_zenith"));  // now: an atmosphere's spectral phase reads it next
+      c.set_in_spectral_phase(*id_zenith_, params_.get("solar_zenith"));  // an atmosphere's spectral phase reads it next
     }
   }
 

@@ -99,6 +99,9 @@ const Case cases[] = {
     {"streak_unknown_tracking"},
     {"streak_window_photometry"},
     {"airmass_outside_lut"},
+    {"airmass_without_view"},
+    {"view_airmass_given_twice"},
+    {"view_airmass_outside_lut"},
     {"sun_below_horizon"},
     {"dated_scene_without_day"},
 };

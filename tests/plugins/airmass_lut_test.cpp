@@ -7,6 +7,7 @@
 #include "radchain/physics/solar_position.hpp"
 #include "radchain/sensor_file.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -51,12 +52,16 @@ double band_mean(const std::string& a, const std::string& b, F f) {
 
 const std::string x10 = "lsst_atmos_aerosol_X10_throughputs1.9.csv", x15 = "lsst_atmos_aerosol_X15_throughputs1.9.csv";
 
-std::string sensor(const std::string& atmosphere) {
+// A platform without a view (the line of sight's airmass is given by hand), and one with (earth_orbit: the view
+// zenith at the ground point sets it).
+const std::string circular = "plugin = \"circular_orbit\"\naltitude = \"700 km\"\n";
+const std::string orbit = "plugin = \"earth_orbit\"\naltitude = \"700 km\"\n";
+
+std::string sensor(const std::string& atmosphere, const std::string& platform = circular) {
   return R"([sensor]
 name = "airmass LUT test"
 [platform]
-plugin = "earth_orbit"
-altitude = "700 km"
+)" + platform + R"(
 [source]
 plugin = "sun"
 [atmosphere]
@@ -85,8 +90,8 @@ integration_time = "2 ms"
 )";
 }
 
-Report run(const std::string& atmosphere) {
-  Chain chain = load_sensor_text(sensor(atmosphere), "airmass_lut_test.toml");
+Report run(const std::string& atmosphere, const std::string& platform = circular) {
+  Chain chain = load_sensor_text(sensor(atmosphere, platform), "airmass_lut_test.toml");
   return chain.run();
 }
 
@@ -200,6 +205,170 @@ TEST(AirmassLut, TheSunsAirmassFollowsTheSourcesZenith) {
   EXPECT_NE(error_of(sun60, "airmass = 1.0\nsun_airmass = 2", "").find("sun_airmass = 2: the source gives solar_zenith"), std::string::npos);
   EXPECT_NE(error_of("solar_zenith = \"70 deg\"\n", "airmass = 1.0", "").find("crosses 2.9"), std::string::npos)
       << error_of("solar_zenith = \"70 deg\"\n", "airmass = 1.0", "");
+}
+
+// The view zenith η at the ground point, independently of the plugin: the sine rule in the triangle Earth centre,
+// satellite, ground point (Wertz & Larson, SMAD 3rd ed. §5.2): sin η = (R + h) sin θ / R, θ the off-nadir angle,
+// cos θ = cos(roll) cos(pitch); R = 6371 km (earth_orbit's default), h = 700 km.
+double off_nadir(double roll, double pitch) { return std::acos(std::cos(roll) * std::cos(pitch)); }
+double view_zenith(double roll, double pitch) {
+  const double r = 6371e3, h = 700e3;
+  return std::asin((r + h) * std::sin(off_nadir(roll, pitch)) / r);
+}
+std::string look(double roll_deg, double pitch_deg = 0) {
+  return orbit + fmt::format("roll = \"{:.17g} deg\"\npitch = \"{:.17g} deg\"\n", roll_deg, pitch_deg);
+}
+constexpr double deg = std::numbers::pi / 180;
+
+std::string error_of_text(const std::string& text) {
+  try {
+    Chain chain = load_sensor_text(text, "airmass_lut_test.toml");
+    (void)chain.run();
+  } catch (const InputError& e) {
+    return std::string(e.what());
+  }
+  return std::string("(no error)");
+}
+
+// The line of sight given once, by the platform: an earth_orbit's view zenith η sets the view airmass by Kasten &
+// Young 1989, X_v = 1/(cos η + 0.50572 (96.07995° − η)^−1.6364) (the formula checked against Hardie 1962 above),
+// held at 1 where the fit dips below it at nadir. η against the sine rule here (1e-12 rad); the chain's signal
+// against the same chain with X_v given by hand to a platform without a view tilted by the same θ (1e-9).
+TEST(AirmassLut, TheLineOfSightsAirmassFollowsThePlatformsViewZenith) {
+  using radchain::physics::kasten_young_airmass;
+  struct Look {
+    double roll_deg, pitch_deg;
+  };
+  for (const Look l : {Look{30, 0}, Look{20, 15}, Look{45, 0}, Look{0, 35}}) {
+    const double eta = view_zenith(l.roll_deg * deg, l.pitch_deg * deg);
+    const double x = kasten_young_airmass(eta);
+    const Report derived = run("", look(l.roll_deg, l.pitch_deg));
+    EXPECT_NEAR(v(derived, "platform.view_zenith_angle"), eta, 1e-12) << l.roll_deg << " " << l.pitch_deg;
+    EXPECT_NEAR(v(derived, "atmosphere.airmass"), x, 1e-12) << l.roll_deg << " " << l.pitch_deg;
+    const std::string tilted = circular + fmt::format("tilt = \"{:.17g} rad\"\n", off_nadir(l.roll_deg * deg, l.pitch_deg * deg));
+    const Report by_hand = run(fmt::format("airmass = {:.17g}", x), tilted);
+    for (const char* name : {"atmosphere.transmittance", "atmosphere.lut_weight", "detector.signal_electrons", "detector.snr"})
+      EXPECT_NEAR(v(derived, name) / v(by_hand, name), 1.0, 1e-9) << name << " at roll " << l.roll_deg;
+  }
+  // θ = 30° from 700 km: η = 33.706°, X_v = 1.2012 (sec η = 1.2022).
+  EXPECT_NEAR(v(run("", look(30)), "atmosphere.airmass"), 1.2012, 1e-4);
+  // Nadir: the fit gives 0.99971, below the X = 1 node; relative air mass is 1 there by definition.
+  EXPECT_NEAR(kasten_young_airmass(0), 0.99971, 1e-5);
+  const Report nadir = run("", orbit);
+  EXPECT_EQ(v(nadir, "atmosphere.airmass"), 1.0);
+  EXPECT_NEAR(v(nadir, "detector.signal_electrons") / v(run("airmass = 1.0"), "detector.signal_electrons"), 1.0, 1e-12);
+  // The Sun and the line of sight both derived: the same as both given by hand (the target's θ_s, both airmasses).
+  std::string both = sensor("", look(30));
+  both.insert(both.find("plugin = \"sun\"\n") + 15, "solar_zenith = \"60 deg\"\n");
+  const Report derived = load_sensor_text(both, "airmass_lut_test.toml").run();
+  std::string text = sensor(fmt::format("airmass = {:.17g}\nsun_airmass = {:.17g}", kasten_young_airmass(view_zenith(30 * deg, 0)),
+                                        kasten_young_airmass(60 * deg)),
+                            circular + "tilt = \"30 deg\"\n");
+  text.insert(text.find("reflectance = 0.3\n") + 18, "solar_zenith = \"60 deg\"\n");
+  const Report by_hand = load_sensor_text(text, "airmass_lut_test.toml").run();
+  EXPECT_NEAR(v(derived, "detector.signal_electrons") / v(by_hand, "detector.signal_electrons"), 1.0, 1e-9);
+}
+
+// The view zenith is a scalar result of roll, pitch and altitude, but the atmosphere reads it in its spectral
+// phase: in this chain those parameters are spectral (Chain::set re-runs the spectral phase from the platform), so
+// a chain changed through set() equals a chain loaded with the new value (the test of a stale spectral phase).
+// Chains whose spectral phase does not read the view keep them scalar (WorldView-2's GIQE reads the view zenith
+// in its scalar phase: a sweep over roll stays on the lanes).
+TEST(AirmassLut, ChangingTheLookRerunsTheSpectralPhase) {
+  Chain chain = load_sensor_text(sensor("", look(0)), "airmass_lut_test.toml");
+  (void)chain.run();
+  const ParameterRef roll = chain.parameter("platform.roll"), pitch = chain.parameter("platform.pitch");
+  const ParameterRef altitude = chain.parameter("platform.altitude");
+  EXPECT_TRUE(roll.spectral());
+  EXPECT_TRUE(pitch.spectral());
+  EXPECT_TRUE(altitude.spectral());
+  EXPECT_TRUE(chain.parameter("platform.earth_radius").spectral());
+  EXPECT_FALSE(chain.parameter("platform.earth_gm").spectral());  // the ground speed only
+  EXPECT_FALSE(chain.parameter("detector.integration_time").spectral());
+  EXPECT_THROW(chain.set_lanes(roll, constant_lanes(0.1)), std::logic_error);
+  const char* names[] = {"platform.view_zenith_angle", "atmosphere.airmass", "atmosphere.transmittance", "atmosphere.lut_weight",
+                         "detector.signal_electrons", "detector.snr"};
+  auto same_as_fresh = [&](const std::string& platform, const std::string& what) {
+    const Report fresh = run("", platform);
+    for (const char* name : names) EXPECT_NEAR(chain.result(name), v(fresh, name), 1e-12 * std::abs(v(fresh, name))) << name << " " << what;
+  };
+  for (const double r : {40.0, 10.0, 0.0, 47.5}) {
+    chain.set(roll, r * deg);
+    chain.evaluate();
+    same_as_fresh(look(r), fmt::format("roll {}", r));
+  }
+  chain.set(pitch, 20 * deg);
+  chain.evaluate(Detail::essential);
+  chain.evaluate();
+  same_as_fresh(look(47.5, 20), "pitch 20");
+  chain.set(altitude, 500e3);
+  chain.evaluate();
+  std::string lower = look(47.5, 20);
+  lower.replace(lower.find("700 km"), 6, "500 km");
+  same_as_fresh(lower, "altitude 500 km");
+  // A spectral change further down after run() (which clears the values): the atmosphere's spectral phase re-runs
+  // alone and still reads the platform's view zenith as the platform's spectral phase set it.
+  chain.set(chain.parameter("atmosphere.sun_airmass"), 2.0);
+  const Report after = chain.run();
+  EXPECT_NEAR(v(after, "atmosphere.airmass"), radchain::physics::kasten_young_airmass(v(after, "platform.view_zenith_angle")), 1e-12);
+  EXPECT_EQ(v(after, "atmosphere.sun_airmass"), 2.0);
+  // No atmosphere reading the view: roll stays scalar.
+  Chain wv2 = load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/worldview-2-pan-20deg.toml");
+  EXPECT_FALSE(wv2.parameter("platform.roll").spectral());
+  EXPECT_FALSE(wv2.parameter("platform.altitude").spectral());
+}
+
+// A [[solve]] on the roll: the look at which the SNR falls to a threshold. The threshold is a fresh chain's SNR at
+// 40°; the solve (TOMS 748, never lanes: the unknown is spectral here) finds 40° back.
+TEST(AirmassLut, ASolveOnTheRollRerunsTheSpectralPhase) {
+  const double snr40 = v(run("", look(40)), "detector.snr");
+  std::string text = sensor("", look(10)) + fmt::format(R"(
+[criteria.snr]
+plugin = "snr_threshold"
+threshold = {:.17g}
+[[solve]]
+unknown = "platform.roll"
+criterion = "snr"
+bracket = ["0 deg", "55 deg"]
+)",
+                                                        snr40);
+  Chain chain = load_sensor_text(text, "airmass_lut_test.toml");
+  EXPECT_FALSE(chain.lanes_can_solve());
+  const Report r = chain.run();
+  ASSERT_EQ(r.solves.size(), 1u);
+  EXPECT_TRUE(r.solves[0].converged) << r.solves[0].message;
+  EXPECT_NEAR(r.solves[0].value_si, 40 * deg, 1e-9);
+  EXPECT_NEAR(v(r, "atmosphere.airmass"), radchain::physics::kasten_young_airmass(view_zenith(40 * deg, 0)), 1e-8);
+}
+
+// The line of sight given twice (the platform's view and `airmass`) is refused at `airmass`, as the Sun given twice
+// is at the second key; a look whose airmass is beyond the tables is refused at `airmasses` with the airmass it
+// needs, for the file's roll and for one set later (a sweep's point); no platform view and no airmass: missing key.
+TEST(AirmassLut, TheLineOfSightGivenTwiceOrBeyondTheTablesIsRefused) {
+  EXPECT_NE(error_of_text(sensor("airmass = 1.2", look(30)))
+                .find("atmosphere (plugin \"airmass_lut\"): airmass = 1.2: the platform gives the line of sight's view zenith "
+                      "(platform.view_zenith_angle), which sets its airmass: give one of them"),
+            std::string::npos)
+      << error_of_text(sensor("airmass = 1.2", look(30)));
+  // 58° from 700 km: η = 70.26°, X_v = 2.939 > 2.5.
+  const std::string beyond = error_of_text(sensor("", look(58)));
+  EXPECT_NE(beyond.find(": the line of sight at 70.26° (platform.view_zenith_angle) crosses 2.939 airmasses (Kasten & "
+                        "Young 1989)"),
+            std::string::npos)
+      << beyond;
+  EXPECT_NE(beyond.find("(plugin \"airmass_lut\"): airmasses = "), std::string::npos) << beyond;
+  EXPECT_NE(beyond.find("outside the tables' nodes [1, 2.5]: add a table at that airmass"), std::string::npos) << beyond;
+  EXPECT_EQ(beyond.rfind("airmass_lut_test.toml:", 0), 0u) << beyond;  // located
+  Chain chain = load_sensor_text(sensor("", look(0)), "airmass_lut_test.toml");
+  chain.set(chain.parameter("platform.roll"), 58 * deg);
+  try {
+    chain.evaluate();
+    ADD_FAILURE() << "no error at roll 58°";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("crosses 2.9"), std::string::npos) << e.what();
+  }
+  EXPECT_NE(error_of_text(sensor("")).find("atmosphere (plugin \"airmass_lut\"): airmass: missing required key: the line of sight's airmass"), std::string::npos)
+      << error_of_text(sensor(""));
 }
 
 TEST(AirmassLut, BadTablesAreRefusedAtTheirKeys) {

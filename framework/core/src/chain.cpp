@@ -52,13 +52,46 @@ void Chain::invalidate_spectra() {
 void Chain::prepare_from(std::size_t first) {
   light_before_.resize(stages.size());
   light_ = first == 0 ? Light{} : light_before_[first];
+  // What the stages not re-run set for later spectral phases, as their spectral phase set it (run() clears values).
+  for (std::size_t k = 0; k < first; ++k)
+    for (const SpectralExchange::Set& s : stages[k].exchange.set) results_.set(s.id, s.value);
   for (std::size_t k = first; k < stages.size(); ++k) {
     StageSlot& slot = stages[k];
     light_before_[k] = light_;
-    Context context(results_, light_, slot.section, slot.plugin, Detail::full, &slot.declarations, &slot.lookups);
+    slot.exchange.set.clear();
+    slot.exchange.read.clear();
+    Context context(results_, light_, slot.section, slot.plugin, Detail::full, &slot.declarations, &slot.lookups,
+                    &slot.exchange);
     run_stage(slot, sensor_file, [&] { slot.stage->prepare(context); });
   }
   spectral_from_ = stages.size();
+  find_spectral_reads();
+}
+
+// A result an earlier stage set in its spectral phase from scalar parameters (the platform's view zenith from its
+// roll), read by a later stage's spectral phase (the atmosphere's view airmass): those parameters are spectral in
+// this chain, so that Chain::set re-runs the spectral phase from the producing stage and lanes never vary them.
+// Chains where no spectral phase reads such a result keep them scalar (a sweep over roll stays on the lanes).
+void Chain::find_spectral_reads() {
+  read_spectrally_.clear();
+  for (std::size_t k = 0; k < stages.size(); ++k)
+    for (const ResultId id : stages[k].exchange.read) {
+      bool found = false;
+      for (std::size_t j = 0; j < k; ++j)
+        for (const SpectralExchange::Set& s : stages[j].exchange.set)
+          if (s.id == id) {
+            found = true;
+            read_spectrally_.insert(read_spectrally_.end(), s.parameters.begin(), s.parameters.end());
+          }
+      if (!found)
+        throw std::logic_error(fmt::format("[{}] (plugin \"{}\") reads \"{}\" in its spectral phase, but no earlier stage "
+                                           "sets it there (Context::set_in_spectral_phase)",
+                                           stages[k].section, stages[k].plugin, results_.info(id).name));
+    }
+}
+
+bool Chain::read_in_spectral_phase(const double* parameter) const {
+  return std::find(read_spectrally_.begin(), read_spectrally_.end(), parameter) != read_spectrally_.end();
 }
 
 void Chain::evaluate_from(std::size_t first, Detail detail) {
@@ -83,7 +116,7 @@ void Chain::evaluate_from(std::size_t first, Detail detail) {
 }
 
 void Chain::set_lanes(const ParameterRef& parameter, const Lanes& values) {
-  if (parameter.spectral_)
+  if (parameter.spectral_ || read_in_spectral_phase(parameter.value_))
     throw std::logic_error("a spectral parameter cannot differ between lanes (the spectral phase is shared)");
   for (std::size_t i = 0; i < lane_slots_.size(); ++i)
     if (lane_slots_[i].address == parameter.value_) {
@@ -211,7 +244,7 @@ ParameterRef Chain::parameter(const std::string& qualified_key) {
   ParameterRef ref;
   ref.value_ = &entry.number;
   ref.stage_ = index;
-  ref.spectral_ = entry.spec->spectral;
+  ref.spectral_ = entry.spec->spectral || read_in_spectral_phase(&entry.number);
   ref.scaling_ = entry.spec->scaling;
   return ref;
 }
@@ -219,7 +252,8 @@ ParameterRef Chain::parameter(const std::string& qualified_key) {
 void Chain::set(const ParameterRef& parameter, double value_si) {
   *parameter.value_ = value_si;
   scalar_from_ = std::min(scalar_from_, parameter.stage_);
-  if (parameter.spectral_) spectral_from_ = std::min(spectral_from_, parameter.stage_);
+  if (parameter.spectral_ || read_in_spectral_phase(parameter.value_))
+    spectral_from_ = std::min(spectral_from_, parameter.stage_);
 }
 
 double Chain::result(const std::string& name) const {

@@ -157,6 +157,23 @@ std::optional<ResultId> Context::look_up(const Term& term, bool required) {
   return id;
 }
 
+void Context::set_in_spectral_phase(ResultId id, double value, std::initializer_list<const double*> scalar_parameters) {
+  if (!exchange_)
+    throw std::logic_error(fmt::format("plugin \"{}\" sets \"{}\" for the spectral phase outside its spectral phase "
+                                       "(prepare)",
+                                       plugin, results.info(id).name));
+  results.set(id, value);
+  exchange_->set.push_back(SpectralExchange::Set{id, value, std::vector<const double*>(scalar_parameters)});
+}
+
+double Context::read_in_spectral_phase(ResultId id) {
+  if (!exchange_)
+    throw std::logic_error(fmt::format("plugin \"{}\" reads \"{}\" for its spectral phase outside it (prepare)", plugin,
+                                       results.info(id).name));
+  exchange_->read.push_back(id);
+  return results.value(id);
+}
+
 void Context::refuse_form(const std::string& what, RadiationForm form) const {
   // No light at all: the file is geometry-only (sensor_file.cpp: no [source], [atmosphere], [target]).
   if (form == RadiationForm::none)

@@ -8,6 +8,9 @@
 // the spectral phase (prepare) from the first stage whose spectral parameter changed, and the scalar phase from
 // the first stage whose parameter changed, each from the light as it was before that stage. A sweep over the
 // aperture therefore re-runs optics, detector and criteria, never the Sun's spectral integrals.
+// A parameter is spectral when its schema says so (affects_spectrum), or in this chain when a later stage's
+// spectral phase reads a result that follows from it (Context::set_in_spectral_phase, read_in_spectral_phase:
+// an earth_orbit platform's roll where an airmass_lut atmosphere takes its view airmass from the view zenith).
 #include "radchain/config.hpp"
 #include "radchain/light.hpp"
 #include "radchain/plugin.hpp"
@@ -32,6 +35,7 @@ struct StageSlot {
   std::unique_ptr<Stage> stage;
   std::vector<ResultId> declarations;  // what the stage declared at its last spectral phase, in order
   std::vector<LookUp> lookups;         // what it looked up then (found or missed), in order
+  SpectralExchange exchange;           // what its last spectral phase set for later ones and read from earlier ones
 };
 
 // A numeric parameter of one stage, found once by name ("optics.aperture"); Chain::set() through it marks what
@@ -40,6 +44,8 @@ class ParameterRef {
  public:
   double value() const { return *value_; }
   std::size_t stage() const { return stage_; }
+  // Changing it re-runs the spectral phase from its stage: its schema's affects_spectrum, or in this chain a later
+  // stage's spectral phase reads a result that follows from it (as of the chain's last spectral phase).
   bool spectral() const { return spectral_; }
   Scaling scaling() const { return scaling_; }
 
@@ -233,6 +239,10 @@ class Chain {
     double illumination = 1, signal = 1, background = 1, up_path = 1;
   };
   void prepare_from(std::size_t first);
+  // The scalar parameters behind results that a later stage's spectral phase read (StageSlot::exchange), after a
+  // spectral phase; and whether a parameter is one of them.
+  void find_spectral_reads();
+  bool read_in_spectral_phase(const double* parameter) const;
   void evaluate_from(std::size_t first, Detail detail);
   void evaluate_lane_by_lane(StageSlot& slot, Detail detail);  // a stage without evaluate_lanes()
 
@@ -242,6 +252,7 @@ class Chain {
   std::vector<Scales> scales_before_;  // per stage: the scales its evaluate() started from
   std::vector<double> saved_values_;   // scratch of evaluate_lane_by_lane()
   std::size_t spectral_from_ = 0;      // first stage whose prepare() must re-run (stages.size(): none)
+  std::vector<const double*> read_spectrally_;  // scalar parameters a later spectral phase depends on (find_spectral_reads)
   std::size_t scalar_from_ = 0;        // first stage whose evaluate() must re-run
   std::size_t essential_from_ = SIZE_MAX;  // first stage last evaluated with Detail::essential
   std::uint64_t scalar_version_ = 0;       // counts scalar evaluations (lanes copy their results when it moves)

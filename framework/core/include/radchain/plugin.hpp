@@ -15,6 +15,7 @@
 #include <boost/dll/alias.hpp>
 
 #include <array>
+#include <initializer_list>
 #include <cstdint>
 #include <optional>
 #include <memory>
@@ -65,14 +66,27 @@ struct LookUp {
   std::size_t results_then = 0;
 };
 
+// What one stage's spectral phase passed on to later stages' spectral phases through results, and what it took
+// from earlier ones (Context::set_in_spectral_phase, read_in_spectral_phase); the chain keeps one per stage and
+// makes the scalar parameters behind a result that a later spectral phase reads spectral in that chain.
+struct SpectralExchange {
+  struct Set {
+    ResultId id = 0;
+    double value = 0;
+    std::vector<const double*> parameters;  // the producing stage's scalar parameters it follows from (handles)
+  };
+  std::vector<Set> set;        // in the order set
+  std::vector<ResultId> read;  // results of earlier stages read in the spectral phase, in order
+};
+
 // What a stage sees while the chain runs.
 class Context {
  public:
   Context(Results& results, Light& light, const std::string& section, const std::string& plugin,
           Detail detail = Detail::full, std::vector<ResultId>* declarations = nullptr,
-          std::vector<LookUp>* lookups = nullptr)
+          std::vector<LookUp>* lookups = nullptr, SpectralExchange* exchange = nullptr)
       : results(results), light(light), section(section), plugin(plugin), detail(detail), declarations_(declarations),
-        lookups_(lookups) {}
+        lookups_(lookups), exchange_(exchange) {}
 
   Results& results;
   Light& light;
@@ -96,6 +110,16 @@ class Context {
   // usually as if_present(term) (std::logic_error otherwise).
   // (Like declare(): the same look-ups in the same order at every spectral phase are name comparisons, misses too.)
   std::optional<ResultId> find(const Term& term);
+  // Spectral phase only. Sets a result now, so that a later stage's spectral phase can read it (the scalar phase
+  // sets it again), and names the stage's scalar parameters it follows from (Params::handle pointers). In a chain
+  // where a later stage reads it with read_in_spectral_phase(), those parameters are spectral (a change through
+  // Chain::set re-runs the spectral phase from this stage; ParameterRef::spectral(), so never lanes); in any other
+  // chain they stay scalar. A key marked affects_spectrum needs no naming. (std::logic_error outside prepare().)
+  void set_in_spectral_phase(ResultId id, double value, std::initializer_list<const double*> scalar_parameters = {});
+  // Spectral phase only: the value an earlier stage's spectral phase set (set_in_spectral_phase; the chain checks
+  // that one did). A look-up alone (find, require) makes no such dependency: a stage that reads a result only in
+  // its scalar phase leaves the producer's parameters scalar.
+  double read_in_spectral_phase(ResultId id);
   // The incoming radiation has a form this stage cannot take.
   [[noreturn]] void refuse_form(const std::string& what, RadiationForm form) const;
 
@@ -108,6 +132,7 @@ class Context {
   std::size_t next_declaration_ = 0;
   std::vector<LookUp>* lookups_;         // what it looked up, in order
   std::size_t next_lookup_ = 0;
+  SpectralExchange* exchange_;           // the spectral phase's (null in the scalar phase)
 };
 
 // What a stage's scalar phase sees when it evaluates one point (a view of Context).

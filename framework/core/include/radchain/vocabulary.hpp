@@ -157,7 +157,8 @@ inline constexpr Term platform_pitch{"platform.pitch", "rad", "look angle about 
 inline constexpr Term platform_slant_range{"platform.slant_range", "m",
                                            "distance from the platform to the ground point of the look (spherical Earth)"};
 inline constexpr Term platform_view_zenith_angle{"platform.view_zenith_angle", "rad",
-                                                 "zenith angle of the line of sight at the ground point"};
+                                                 "zenith angle of the line of sight at the ground point (set in the "
+                                                 "platform's spectral phase too: an atmosphere's view airmass reads it there)"};
 inline constexpr Term platform_earth_radius{"platform.earth_radius", "m",
                                             "radius of the spherical Earth of the geometry"};
 inline constexpr Term detector_pixel_pitch{"detector.pixel_pitch", "m",

@@ -49,4 +49,10 @@ inline double kasten_young_airmass(double zenith_rad) {
   return 1.0 / (std::cos(zenith_rad) + 0.50572 * std::pow(96.07995 - z_deg, -1.6364));
 }
 
+// The relative air mass on an RT table's airmass axis: Kasten & Young 1989, held at 1 where the fit dips below it
+// near the zenith. Relative air mass is the slant column over the vertical one, 1 at the zenith by definition;
+// the fit gives 0.99971 there and reaches 1 at z ≈ 1.4°, which would put a nadir view or an overhead Sun just
+// below a table's X = 1 node.
+inline double relative_airmass(double zenith_rad) { return std::max(1.0, kasten_young_airmass(zenith_rad)); }
+
 }  // namespace radchain::physics
