@@ -4,6 +4,7 @@ vectorised numpy, doing the same spectral work as radchain's spectral phase (E-4
 illuminance and total; the photon integral over the detector band) and closing with Pan's eq. (11).
 
     /usr/bin/python3 bench/numpy_reference.py          # Debian: apt-get install python3-numpy
+    /usr/bin/python3 bench/numpy_reference.py --bench out/release/radchain_bench   # and radchain, ratios printed
 
 Prints the limiting magnitude (radchain: 15.5565) and the median times of
   * one limiting magnitude including the spectral integration (files already loaded; with the illuminance and
@@ -116,7 +117,26 @@ def median_seconds(statement, number, repeat=7):
     return statistics.median(t / number for t in timeit.repeat(statement, number=number, repeat=repeat))
 
 
+def radchain_medians(bench):
+    """Medians (ms) of the radchain benchmarks that the numpy lines compare with, run now (one core each)."""
+    import json
+    import os
+    import subprocess
+    build = pathlib.Path(bench).resolve().parent
+    env = dict(os.environ, RADCHAIN_PLUGIN_PATH=str(build / "plugins"), RADCHAIN_DATA_PATH=str(SPECTRA))
+    run = subprocess.run([str(bench), "--benchmark_filter=HandWritten|MillionSolves_Lanes_OneCore|GridSolves",
+                          "--benchmark_repetitions=5", "--benchmark_report_aggregates_only=true",
+                          "--benchmark_format=json"], capture_output=True, text=True, env=env, check=True)
+    scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
+    return {b["run_name"].split("/")[0]: b["real_time"] * scale[b["time_unit"]]
+            for b in json.loads(run.stdout)["benchmarks"] if b.get("aggregate_name") == "median"}
+
+
 if __name__ == "__main__":
+    import argparse
+    parser = argparse.ArgumentParser(description="numpy's closed form of the SBV limiting magnitude, timed")
+    parser.add_argument("--bench", help="radchain_bench to run straight after, printing the ratios")
+    arguments = parser.parse_args()
     magnitude, _ = limiting_magnitude()
     print(f"limiting magnitude (SBV, 15 cm): {magnitude:.6g}   (radchain: 15.5565)")
     one = median_seconds(limiting_magnitude, number=2000)
@@ -124,13 +144,26 @@ if __name__ == "__main__":
     lean = median_seconds(limiting_magnitude_lean, number=2000)
     print(f"  the same, only the detector's photon integral: {lean * 1e6:.1f} us (median of 7)")
     apertures = np.linspace(0.15, 0.30, 1_000_000)
-    many = median_seconds(lambda: vectorised(apertures), number=10)
+    aperture = many = median_seconds(lambda: vectorised(apertures), number=10)
     print(f"1e6 vectorised evaluations over the aperture: {many * 1e3:.1f} ms (median of 7)")
     grid = (np.linspace(0.15, 0.30, 100), np.linspace(0.2, 0.8, 100), np.linspace(0.1, 2.0, 100))
     print(f"grid point 123456 (aperture × QE × exposure): {vectorised_grid(*grid).ravel()[123456]:.10g}")
     many = median_seconds(lambda: vectorised_grid(*grid), number=10)
     print(f"1e6 limiting magnitudes over the 100 × 100 × 100 grid: {many * 1e3:.1f} ms (median of 7)")
     print(f"  factored by hand, point 123456: {vectorised_grid_factored(*grid).ravel()[123456]:.10g}")
-    many = median_seconds(lambda: vectorised_grid_factored(*grid), number=10)
-    print(f"  the same factored by hand (logs per axis, one broadcast sum): {many * 1e3:.1f} ms (median of 7)")
+    factored = median_seconds(lambda: vectorised_grid_factored(*grid), number=10)
+    print(f"  the same factored by hand (logs per axis, one broadcast sum): {factored * 1e3:.1f} ms (median of 7)")
     print(f"numpy {np.__version__}")
+    if arguments.bench:
+        medians = radchain_medians(arguments.bench)
+        aperture, closed, hand = aperture * 1e3, many * 1e3, factored * 1e3
+        rows = [("10^6 over the aperture: lanes", "BM_MillionSolves_Lanes_OneCore", "BM_MillionLimitingMagnitudes_HandWrittenLoop", aperture),
+                ("10^6 grid: lanes", "BM_MillionGridSolves_Lanes_OneCore", "BM_MillionGridLimitingMagnitudes_HandWrittenLoop", closed),
+                ("10^6 grid: factored", "BM_MillionGridSolves_Factored_OneCore", "BM_MillionGridLimitingMagnitudes_HandWrittenLoop", closed)]
+        print("radchain (median of 5, ms) | C++ hand loop | ratio to it | numpy closed form | numpy / radchain")
+        for label, name, loop, reference in rows:
+            r, h = medians[name], medians[loop]
+            print(f"{label}: {r:.2f} | {h:.2f} | {r / h:.2f}x | {reference:.2f} | {reference / r:.2f}")
+        r = medians["BM_MillionGridSolves_Factored_OneCore"]
+        print(f"10^6 grid, factored: numpy factored by hand {hand:.2f} ms, numpy / radchain {hand / r:.2f} "
+              f"(radchain writes each sweep row, 4 columns; numpy the magnitudes alone)")
