@@ -23,6 +23,8 @@ constexpr double separation_tolerance = 1e-11;
 constexpr double check_tolerance = 1e-11;
 // A root this close to a bracket end is solved on its own (the per-point solver decides there).
 constexpr double end_margin = 1e-9;
+// An axis of more steps than this whose parameter declares a power law gets its signal from the law (checked).
+constexpr std::size_t power_law_line_steps = 64;
 // Spread points checked besides the corners.
 constexpr std::size_t spread_checks = 64;
 
@@ -87,13 +89,6 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
   // Corners of the other axes at which each axis is tested: all of them up to 7 axes, else the two extreme ones.
   const std::size_t corner_bits = n_axes - 1;
   const std::size_t corners = corner_bits <= 6 ? std::size_t{1} << corner_bits : 2;
-  std::size_t line_cost = 0, test_cost = 0;
-  for (const auto& a : axes) line_cost += a.steps, test_cost += corners * test_steps(a.steps).size();
-  // Factoring pays when the chain runs for a small part of the grid (the sub-grid of J is counted below).
-  if (4 * (line_cost + test_cost) > sweep.points()) {
-    why_not = fmt::format("the grid's {} points are too few for factoring to pay", sweep.points());
-    return std::nullopt;
-  }
 
   std::vector<ParameterRef> refs;
   std::vector<bool> in_floor(n_axes, false);  // J
@@ -113,6 +108,26 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
         why_not = stage_name(chain.stages[s]) + " does not declare power-law results (swept: " + axes[a].key + ")";
         return std::nullopt;
       }
+  }
+
+  // A long axis whose parameter declares a power law (ParamSpec::scales) is not evaluated step by step: lg S_end is
+  // linear in lg x along it, with the slope from its ends, checked at its quarters (a one-axis sweep of 10⁶ apertures
+  // then costs a logarithm per step, not a chain evaluation).
+  std::vector<bool> power_line(n_axes, false);
+  std::size_t line_cost = 0, test_cost = 0;
+  for (std::size_t a = 0; a < n_axes; ++a) {
+    const SweepAxis& axis = axes[a];
+    power_line[a] = refs[a].scaling() == Scaling::power_law && axis.steps > power_law_line_steps &&
+                    axis.value_si(0) > 0 && axis.value_si(axis.steps - 1) > 0 && axis.from != axis.to;
+    line_cost += power_line[a] ? 4 : axis.steps;
+    test_cost += corners * test_steps(axis.steps).size();
+  }
+  // Factoring pays when the chain runs for a small part of the grid (the sub-grid of J is counted below; a check is a
+  // per-point solve, two or three evaluations).
+  const std::size_t check_cost = 3 * (std::min<std::size_t>(2 * corners, 64) + spread_checks);
+  if (4 * (line_cost + test_cost + check_cost) > sweep.points()) {
+    why_not = fmt::format("the grid's {} points are too few for factoring to pay", sweep.points());
+    return std::nullopt;
   }
 
   // One chain evaluation at the faint end, the axes at the given steps.
@@ -137,6 +152,13 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
   FactoredGrid grid;
   grid.bright_ = inversion->bright;
   grid.faint_ = inversion->faint;
+  grid.steps_.resize(n_axes);
+  grid.axis_values_.resize(n_axes);
+  for (std::size_t a = 0; a < n_axes; ++a) {
+    grid.steps_[a] = axes[a].steps;
+    grid.axis_values_[a].resize(axes[a].steps);
+    for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_values_[a][i] = axes[a].value(i);
+  }
   std::vector<std::vector<double>> line(n_axes);  // lg S_end along each axis through x₀
   std::vector<std::size_t> step(n_axes, 0);
   try {
@@ -146,18 +168,31 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
       return std::nullopt;
     }
     for (std::size_t a = 0; a < n_axes; ++a) {
-      line[a].resize(axes[a].steps);
-      line[a][0] = base.lg_signal;
-      for (std::size_t i = 1; i < axes[a].steps; ++i) {
+      const std::size_t last = axes[a].steps - 1;
+      auto along = [&](std::size_t i) {
         step.assign(n_axes, 0);
         step[a] = i;
         const At p = at(step);
-        if (!usable(p)) {
-          why_not = fmt::format("the signal or the noise is not positive at {} step {}", axes[a].key, i);
-          return std::nullopt;
-        }
-        line[a][i] = p.lg_signal;
+        if (!usable(p)) why_not = fmt::format("the signal or the noise is not positive at {} step {}", axes[a].key, i);
+        return p.lg_signal;
+      };
+      line[a].resize(axes[a].steps);
+      line[a][0] = base.lg_signal;
+      if (!power_line[a]) {
+        for (std::size_t i = 1; i <= last && why_not.empty(); ++i) line[a][i] = along(i);
+      } else {
+        // (Natural logarithms: glibc's log costs a fraction of its log10, and the slope takes the factor.)
+        // ln(x_i/x_0) from the values in the axis's unit: the unit's factor cancels.
+        const double* values = grid.axis_values_[a].data();
+        const double ln_first = std::log(values[0]), end = along(last);
+        const double slope = (end - base.lg_signal) / (std::log(values[last]) - ln_first);
+        for (std::size_t i = 1; i < last; ++i) line[a][i] = base.lg_signal + slope * (std::log(values[i]) - ln_first);
+        line[a][last] = end;
+        for (std::size_t i : {last / 4, last / 2, 3 * last / 4})
+          if (why_not.empty() && !(std::abs(along(i) - line[a][i]) <= separation_tolerance))
+            why_not = fmt::format("the signal is not the power law of {} that it declares", axes[a].key);
       }
+      if (!why_not.empty()) return std::nullopt;
     }
     // Which axes the noise floor and T depend on, and whether the signal separates, at every corner of the others.
     for (std::size_t a = 0; a < n_axes && why_not.empty(); ++a) {
@@ -215,15 +250,10 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
       const double required = physics::signal_at_snr(p.threshold, p.variance, p.signal);
       grid.floor_terms_[j] = inversion->faint + 2.5 * base.lg_signal - 2.5 * std::log10(required);
     }
-    grid.steps_.resize(n_axes);
-    grid.axis_values_.resize(n_axes);
     grid.axis_terms_.resize(n_axes);
     for (std::size_t a = 0; a < n_axes; ++a) {
-      grid.steps_[a] = axes[a].steps;
-      for (std::size_t i = 0; i < axes[a].steps; ++i) {
-        grid.axis_values_[a].push_back(axes[a].value(i));
-        grid.axis_terms_[a].push_back(2.5 * (line[a][i] - base.lg_signal));
-      }
+      grid.axis_terms_[a].resize(axes[a].steps);
+      for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_terms_[a][i] = 2.5 * (line[a][i] - base.lg_signal);
     }
   } catch (const InputError& error) {
     why_not = std::string("the chain refuses a point of the grid: ") + error.what();
@@ -306,6 +336,7 @@ void FactoredGrid::evaluate(std::size_t first, std::size_t count, std::size_t st
     double* rows = out + k * n_columns;
     const Run r{rows, ok + k, run, n_columns, outer_values.data(), values, inner, floor, floor_step, outer, low, high};
     switch (n_axes) {  // one pass over the rows, unrolled for the usual number of axes
+      case 1: fill_run<1>(r); break;
       case 2: fill_run<2>(r); break;
       case 3: fill_run<3>(r); break;
       case 4: fill_run<4>(r); break;
