@@ -13,7 +13,8 @@
 // powers with positive coefficients is strictly convex in the logarithm of each variable it depends on, so it cannot
 // take one value at three points of an axis unless it does not depend on that axis at all: the plan evaluates c and
 // T at the first, middle and last step of each axis, at every corner of the other axes, and puts the axis in J where
-// they move (by more than 1e-12 relative: rounding). The chain is then evaluated along each axis through x₀ and over
+// they move (by more than 1e-12 relative: rounding). The chain is then evaluated along each axis through x₀ (a long
+// axis whose parameter declares a power law: at its ends, the law between them checked at its quarters) and over
 // the sub-grid of J, and a point costs additions:
 //   m(x) = P[x_J] + Σ_a B_a[x_a],  P = m_end + 2.5 lg S_end(x₀) − 2.5 lg S*(c, T),  B_a = 2.5 [lg S_end(.., x_a, ..) − lg S_end(x₀)].
 // Nothing is taken on trust: the plan also checks that lg S_end separates at those corners, and the whole plan
