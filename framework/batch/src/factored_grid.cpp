@@ -267,8 +267,8 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
   const std::size_t total = sweep.points();
   for (std::size_t corner = 0; corner < std::min<std::size_t>(corners * 2, 64); ++corner) {
     std::size_t point = 0;
-    for (std::size_t a = 0, bit = 0; a < n_axes; ++a, ++bit)
-      point = point * axes[a].steps + (((corner >> bit) & 1) != 0 ? axes[a].steps - 1 : 0);
+    for (std::size_t a = 0; a < n_axes; ++a)  // (64 corners at most: the first six axes' ends)
+      point = point * axes[a].steps + (a < 6 && ((corner >> a) & 1) != 0 ? axes[a].steps - 1 : 0);
     checked.push_back(point);
   }
   // k/64 of the way through the grid, moved by a pseudo-random part of a 64th, so the checks do not line up on an axis.
