@@ -140,7 +140,11 @@ const Spectrum& Params::spectrum(std::string_view key) const {
 
 void Params::reject(const std::string& key, const std::string& problem) const {
   const Entry& e = entry(key);
-  throw InputError(e.where, context(), key + " = " + e.as_written, problem);
+  // A value a sweep or a solve set has no text as written: its number then, in SI.
+  const bool numeric = e.spec->type == ParamType::quantity || e.spec->type == ParamType::number || e.spec->type == ParamType::integer;
+  const std::string unit = e.spec->type == ParamType::quantity && e.spec->si_unit != "1" ? " " + e.spec->si_unit : "";
+  const std::string value = !e.as_written.empty() || !numeric ? e.as_written : fmt::format("{:g}{}", e.number, unit);
+  throw InputError(e.where, context(), key + " = " + value, problem);
 }
 
 std::optional<std::string> resolve_data_file(const std::string& name, const std::string& sensor_file) {
