@@ -15,6 +15,7 @@ fields file, line, column, context, subject, problem. Values are in SI everywher
 """
 from __future__ import annotations
 
+import io as _io
 import json as _json
 import numbers as _numbers
 import warnings as _warnings
@@ -27,7 +28,8 @@ from . import _radchain
 from ._radchain import InputError, framework_version, plugin_abi_version
 
 __all__ = [
-    "InputError", "Session", "Result", "load", "loads", "describe", "plugins", "compare", "catalogue", "budget", "uncertainty",
+    "InputError", "Session", "Result", "load", "loads", "describe", "plugins", "compare", "catalogue", "grid", "budget",
+    "uncertainty",
     "render", "Image",
     "configure", "search_path", "set_threads", "threads", "framework_version", "plugin_abi_version",
     "Stage", "parameter", "register_stage",
@@ -421,6 +423,34 @@ def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True)
         raise TypeError("catalogue(set=...) takes TOML value text, as --set does")
     table, errors, code = _radchain.catalogue([str(i) for i in inputs], texts, list(results or []), not solve)
     return _catalogue_frame(table, errors, code)
+
+
+def grid(path, axes: dict, set: dict | None = None, results=None, solve: bool = True):
+    """`radchain sweep path --set key=from:to:steps …` on all cores, in memory: a DataFrame of the grid's points in
+    point order (the last axis varying fastest), the columns of `radchain sweep --out grid.npy` ("optics.aperture_cm",
+    "target.magnitude", …: axes in the unit their range is written in, results in their display units).
+
+    axes: {"<section>.<key>": "from:to:steps"} (e.g. "15 cm:30 cm:100"), the first outermost; set: fixed values, TOML
+    text. A grid of limiting magnitudes is factored by axis where the chain allows it (docs/performance.md, "Factored
+    grids"): df.attrs["method"] says how the points were solved, or why each was solved on its own, as `radchain sweep
+    --explain` does. df.attrs["exit_code"] is the command's (1: a solve failed at some point, NaN there; a
+    RuntimeWarning says where). Session.sweep takes arbitrary values per point instead."""
+    if not axes:
+        raise ValueError("grid: give at least one axis, e.g. {\"optics.aperture\": \"15 cm:30 cm:16\"}")
+    if isinstance(results, str):
+        results = [results]
+    texts, numbers = _split_sets(set)
+    if numbers:
+        raise TypeError("grid(set=...) takes TOML value text, as --set does")
+    table, failure, code, method = _radchain.sweep_table(
+        str(path), texts, [(str(k), str(v)) for k, v in axes.items()], [str(r) for r in results or []], not solve,
+        "npy", "", "block")
+    if failure:
+        _warnings.warn(f"radchain sweep: {failure}", RuntimeWarning, stacklevel=2)
+    df = _pandas().DataFrame(_np.load(_io.BytesIO(table)))
+    df.attrs["exit_code"] = code
+    df.attrs["method"] = method
+    return df
 
 
 Image = _namedtuple("Image", "pixels header cards summary kind")

@@ -498,12 +498,13 @@ py::tuple catalogue(const std::vector<std::string>& inputs, const std::vector<st
 // --- grid sweeps and merge (radchain.dask): `radchain sweep` and `radchain merge` with their outputs in memory --------
 
 // `radchain sweep path --set k=v … --set axis=from:to:steps … --results … [--no-solve] --format F [--shard k/n]`:
-// the table's bytes (a shard file when sharded), the first failing point's message ("" if none) and the exit code.
+// the table's bytes (a shard file when sharded), the first failing point's message ("" if none), the exit code and
+// how the points were solved (Sweep::method(), what --explain prints).
 py::tuple sweep_table(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
                       const std::vector<std::pair<std::string, std::string>>& axes, const std::vector<std::string>& results,
                       bool no_solve, const std::string& format, const std::string& shard, const std::string& order) {
   std::ostringstream out;
-  std::string failure;
+  std::string failure, method;
   int code = 0;
   {
     py::gil_scoped_release release;
@@ -518,8 +519,9 @@ py::tuple sweep_table(const std::string& path, const std::vector<std::pair<std::
     TableWriter writer(out, parse_table_format(format), sweep.layout(), sweep.points(), options.shard, sweep.job());
     code = sweep.run(writer, &failure);
     writer.finish(code);
+    method = sweep.method();
   }
-  return py::make_tuple(py::bytes(out.str()), failure, code);
+  return py::make_tuple(py::bytes(out.str()), failure, code, method);
 }
 
 // `radchain merge files… --format F`: the unsharded job's bytes and its exit code.

@@ -191,3 +191,28 @@ def test_ctrl_c_stops_a_long_sweep(sbv):
     assert interrupted_after < 4 * tenth, (interrupted_after, tenth)
     small = s.sweep({"optics.aperture": apertures[:1000]}, results=["target.magnitude"])
     assert small["ok"].all()
+
+
+def test_grid_is_factored_and_agrees_with_the_per_point_sweep(cli, sbv):
+    axes = {"optics.aperture": "15 cm:30 cm:40", "detector.integration_time": "0.1 s:2 s:40"}
+    df = radchain.grid(sbv, axes, results="target.magnitude")
+    assert list(df) == ["optics.aperture_cm", "detector.integration_time_s", "target.magnitude"]
+    assert len(df) == 1600 and df.attrs["exit_code"] == 0
+    assert df.attrs["method"].startswith("closed form factored over the grid: the noise floor varies with "
+                                         "detector.integration_time;"), df.attrs["method"]
+    # the same points through Session.sweep (lanes, each solved on its own)
+    d = np.repeat(df["optics.aperture_cm"].to_numpy().reshape(40, 40)[:, 0] * 0.01, 40)
+    t = np.tile(df["detector.integration_time_s"].to_numpy()[:40], 40)
+    per_point = radchain.load(sbv).sweep({"optics.aperture": d, "detector.integration_time": t}, results="target.magnitude")
+    np.testing.assert_allclose(df["target.magnitude"], per_point["target.magnitude"], rtol=1e-10, atol=0)
+    # and the CLI's .npy of the same sweep, to the bit
+    header, ref = cli_csv(cli, sbv, "--set", "optics.aperture=15 cm:30 cm:40", "--set", "detector.integration_time=0.1 s:2 s:40",
+                          "--results", "target.magnitude")
+    np.testing.assert_allclose(df["target.magnitude"], ref[:, 2], rtol=6e-10, atol=0)  # the CSV's 10 digits
+    dimmer = radchain.grid(sbv, axes, results="target.magnitude", set={"optics.transmittance": "0.5"})
+    assert dimmer.attrs["method"].startswith("closed form factored"), dimmer.attrs["method"]
+    # S ∝ τ and the SBV's floor does not depend on it: every limit 2.5 lg(0.56/0.5) brighter
+    np.testing.assert_allclose(df["target.magnitude"] - dimmer["target.magnitude"], 2.5 * np.log10(0.56 / 0.5), atol=1e-10)
+    more = radchain.grid(sbv, axes, results=["target.magnitude", "detector.snr"])
+    assert more.attrs["method"] == "per point: a result other than the solved target.magnitude is read (detector.snr)"
+    np.testing.assert_allclose(more["target.magnitude"], df["target.magnitude"], rtol=1e-10, atol=0)
