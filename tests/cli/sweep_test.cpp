@@ -209,51 +209,6 @@ TEST(SweepCli, PointPastTheHorizonIsOneLineAndExit2) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-// A value the sweep sets has no text as written: the refusal names it by its number (it said "airmass = :").
-TEST(SweepCli, ARefusedSweptValueIsNamedByItsNumber) {
-  Scratch scratch;
-  const fs::path file = scratch / "view.toml";
-  write_text(file, R"([sensor]
-name = "a view airmass refused"
-[platform]
-plugin = "earth_orbit"
-altitude = "700 km"
-roll = "30 deg"
-[source]
-plugin = "sun"
-[atmosphere]
-plugin = "airmass_lut"
-tables = ["lsst_atmos_aerosol_X10_throughputs1.9.csv", "lsst_atmos_aerosol_X15_throughputs1.9.csv"]
-airmasses = [1.0, 1.5]
-[target]
-plugin = "reflectance_ground"
-reflectance = 0.3
-[optics]
-plugin = "telescope"
-aperture = "10 cm"
-focal_length = "0.8 m"
-[detector]
-plugin = "emva1288"
-band_min = "0.63 um"
-band_max = "0.69 um"
-gain = "0.1 DN/e-"
-dark_noise = "20 e-"
-saturation_capacity = "80000 e-"
-adc_bits = 14
-pixel_pitch = "10 um"
-integration_time = "2 ms"
-)");
-  const CliResult r = run_cli(scratch, "sweep '" + file.string() + "' --set 'atmosphere.airmass=1:1.5:3' --out '" +
-                                           (scratch / "out.csv").string() + "'");
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
-  EXPECT_NE(r.err.find("at atmosphere.airmass = 1, atmosphere (plugin \"airmass_lut\"): airmass = 1: the platform gives "
-                       "the line of sight's view zenith"),
-            std::string::npos)
-      << r.err;
-  EXPECT_FALSE(fs::exists(scratch / "out.csv"));
-}
-
 TEST(SweepCli, PlotIsAPng) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot is not installed";
   Scratch scratch;

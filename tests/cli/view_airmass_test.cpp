@@ -156,4 +156,20 @@ TEST(ViewAirmass, ABudgetOverRollRerunsTheSpectralPhase) {
   EXPECT_LT(signal->derivative, 0.0);
 }
 
+// A value the sweep sets has no text as written: the refusal names it by its number (it said "airmass = :").
+TEST(ViewAirmass, ARefusedSweptValueIsNamedByItsNumber) {
+  Scratch scratch;
+  const fs::path file = scratch / "view.toml";
+  write_text(file, sensor_text("30 deg"));
+  const CliResult r = run_cli(scratch, "sweep '" + file.string() + "' --set 'atmosphere.airmass=1:1.5:3' --out '" +
+                                           (scratch / "out.csv").string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("at atmosphere.airmass = 1, atmosphere (plugin \"airmass_lut\"): airmass = 1: the platform gives "
+                       "the line of sight's view zenith"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(scratch / "out.csv"));
+}
+
 }  // namespace
