@@ -50,9 +50,10 @@ TEST(PluginContract, EverySensorAndExampleRunsWithinItsPluginsContracts) {
       EXPECT_FALSE(report.results.empty());
       // Each vocabulary result a stage declared is one its plugin lists in `publishes`.
       for (const auto& slot : chain.stages) {
-        for (ResultId id : slot.declarations) {
-          if (const Term* term = vocabulary::term_of(chain.results().info(id).name)) {
+        for (const StageMemo::Declared& d : slot.memo.declarations) {
+          if (const Term* term = vocabulary::term_of(chain.results().info(d.id).name)) {
             EXPECT_TRUE(slot.info->publishes_term(*term)) << slot.plugin << " declares " << term->name;
+            EXPECT_TRUE(d.term && *d.term == *term) << slot.plugin << " declares " << term->name << " as a plain name";
           }
         }
       }
@@ -129,16 +130,16 @@ TEST(PluginContract, RequiringAnOptionalNeedIsAProgrammingError) {
 // declared, since it may be the one looked for; an unlisted need is still a programming error at its first look-up.
 TEST(PluginContract, AMissIsRememberedUntilAResultIsDeclared) {
   HandRun run("detector", "ccd_frame");  // lists the optics' f-number as if_present()
-  std::vector<ResultId> declarations;
-  std::vector<LookUp> lookups;
-  auto phase = [&] { return Context(run.results, run.light, run.section, run.plugin, Detail::full, &declarations, &lookups); };
+  StageMemo memo;
+  const auto& lookups = memo.lookups;
+  auto phase = [&] { return Context(run.results, run.light, run.section, run.plugin, Detail::full, &memo); };
   {
     Context c = phase();
     EXPECT_FALSE(c.find(vocabulary::optics_f_number).has_value());
   }
   ASSERT_EQ(lookups.size(), 1u);
   EXPECT_EQ(lookups[0].id, SIZE_MAX);
-  EXPECT_EQ(lookups[0].missed, "optics.f_number");
+  EXPECT_EQ(lookups[0].term, &vocabulary::optics_f_number);
   {
     Context c = phase();
     EXPECT_FALSE(c.find(vocabulary::optics_f_number).has_value());  // remembered
@@ -150,6 +151,43 @@ TEST(PluginContract, AMissIsRememberedUntilAResultIsDeclared) {
     EXPECT_EQ(c.find(vocabulary::optics_f_number), std::optional<ResultId>(f_number));  // declared since: found
   }
   EXPECT_EQ(lookups[0].id, f_number);
+}
+
+// A stage's declarations are remembered between spectral phases: the same ones again keep their ids (a term by
+// identity, a plain name by its text), and a changed equation is taken, never left stale; a declaration out of the
+// remembered order, or another term in its place, is checked against the contract afresh.
+TEST(PluginContract, ARepeatedDeclarationKeepsItsIdAndTakesANewEquation) {
+  HandRun run("criteria.detection", "snr_threshold");
+  StageMemo memo;
+  const auto& declarations = memo.declarations;
+  auto phase = [&] { return Context(run.results, run.light, run.section, run.plugin, Detail::full, &memo); };
+  std::string equation = "m = SNR − T";  // a label the plugin builds: the same buffer, new text
+  ResultId margin{}, detected{};
+  {
+    Context c = phase();
+    margin = c.declare(vocabulary::criterion_margin, equation);
+    detected = c.declare("detected", "1", "m ≥ 0");
+  }
+  ASSERT_EQ(declarations.size(), 2u);
+  EXPECT_EQ(declarations[0].term, &vocabulary::criterion_margin);
+  EXPECT_EQ(declarations[1].term, nullptr);
+  equation.replace(equation.find('T'), 1, "5");
+  {
+    Context c = phase();
+    EXPECT_EQ(c.declare(vocabulary::criterion_margin, equation), margin);
+    EXPECT_EQ(c.declare("detected", "1", "m ≥ 0 (pinned)"), detected);
+  }
+  EXPECT_EQ(run.results.info(margin).equation, "m = SNR − 5");
+  EXPECT_EQ(run.results.info(detected).equation, "m ≥ 0 (pinned)");
+  EXPECT_EQ(run.results.size(), 2u);
+  {
+    Context c = phase();
+    EXPECT_THROW(c.declare(vocabulary::detector_snr, "x"), std::logic_error);  // another term in the first place
+  }
+  {
+    Context c = phase();
+    EXPECT_THROW(c.declare("margin", "1", "x"), std::logic_error);  // the term's name as a plain one: not the memo's
+  }
 }
 
 TEST(PluginContract, DeclaringAnUnlistedOrMisspelledTermIsAProgrammingError) {

@@ -60,8 +60,7 @@ void Chain::prepare_from(std::size_t first) {
     light_before_[k] = light_;
     slot.exchange.set.clear();
     slot.exchange.read.clear();
-    Context context(results_, light_, slot.section, slot.plugin, Detail::full, &slot.declarations, &slot.lookups,
-                    &slot.exchange);
+    Context context(results_, light_, slot.section, slot.plugin, Detail::full, &slot.memo, &slot.exchange);
     run_stage(slot, sensor_file, [&] { slot.stage->prepare(context); });
   }
   spectral_from_ = stages.size();
@@ -179,7 +178,7 @@ void Chain::evaluate_lane_by_lane(StageSlot& slot, Detail detail) {
       light_.up_path_scale = lane_scales_.up_path(lane);
       Context context(results_, light_, slot.section, slot.plugin, detail);
       run_stage(slot, sensor_file, [&] { slot.stage->evaluate(context); });
-      for (ResultId id : slot.declarations) lane_results_[id](lane) = results_.value(id);
+      for (const StageMemo::Declared& d : slot.memo.declarations) lane_results_[d.id](lane) = results_.value(d.id);
       lane_scales_.illumination(lane) = light_.illumination_scale;
       lane_scales_.signal(lane) = light_.signal.scale;
       lane_scales_.background(lane) = light_.background.scale;

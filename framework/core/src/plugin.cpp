@@ -77,14 +77,21 @@ ResultId Context::declare(const Term& term, std::string_view equation, std::stri
 
 ResultId Context::declare_result(const Term* term, std::string_view name, std::string_view si_unit,
                                  std::string_view equation, std::string_view display_unit) {
-  if (declarations_ && next_declaration_ < declarations_->size()) {
-    // The same declaration as at the last spectral phase: "<section>.<name>" with the same unit and equation
-    // (checked against the contract when it was first made).
-    const ResultId id = (*declarations_)[next_declaration_];
-    const ResultInfo& info = results.info(id);
-    const std::string_view known = info.name;  // "<section>.<name>": the section is this stage's by construction
-    if (known.size() == section.size() + 1 + name.size() && known.ends_with(name) && info.si_unit == si_unit &&
-        info.equation == equation) {
+  if (memo_ && next_declaration_ < memo_->declarations.size()) {
+    // The same declaration as at the last spectral phase (checked against the contract when it was first made)?
+    const StageMemo::Declared& last = memo_->declarations[next_declaration_];
+    const std::string_view text = std::string_view(memo_->text).substr(last.text_begin);
+    const bool same_name_and_unit = term ? last.term == term
+                                         : !last.term && text.substr(0, last.name_size) == name &&
+                                               text.substr(last.name_size, last.unit_size) == si_unit;
+    if (same_name_and_unit) {
+      const ResultId id = last.id;
+      if (text.substr(last.name_size + last.unit_size, last.equation_size) != equation) {
+        results.declare(results.info(id).name, results.info(id).si_unit, plugin, std::string(equation));  // relabel
+        memo_->declarations.resize(next_declaration_);  // and remember it (text from here on)
+        memo_->text.resize(last.text_begin);
+        remember_declaration(id, term, name, si_unit, equation);
+      }
       ++next_declaration_;
       return id;
     }
@@ -106,12 +113,27 @@ ResultId Context::declare_result(const Term* term, std::string_view name, std::s
   }
   const ResultId id = results.declare(std::move(qualified), std::string(si_unit), plugin, std::string(equation),
                                       std::string(display_unit));
-  if (declarations_) {
-    declarations_->resize(next_declaration_);  // a stage that declares differently from now on: forget the rest
-    declarations_->push_back(id);
+  if (memo_) {  // a stage that declares differently from now on: forget the rest
+    if (next_declaration_ < memo_->declarations.size()) {
+      memo_->text.resize(memo_->declarations[next_declaration_].text_begin);
+      memo_->declarations.resize(next_declaration_);
+    }
+    remember_declaration(id, term, name, si_unit, equation);
     ++next_declaration_;
   }
   return id;
+}
+
+void Context::remember_declaration(ResultId id, const Term* term, std::string_view name, std::string_view si_unit,
+                                   std::string_view equation) {
+  StageMemo::Declared d{id, term, static_cast<std::uint32_t>(memo_->text.size()), 0, 0,
+                        static_cast<std::uint32_t>(equation.size())};
+  if (!term) {
+    d.name_size = static_cast<std::uint32_t>(name.size()), d.unit_size = static_cast<std::uint32_t>(si_unit.size());
+    memo_->text.append(name).append(si_unit);
+  }
+  memo_->text.append(equation);
+  memo_->declarations.push_back(d);
 }
 
 std::optional<ResultId> Context::find(const Term& term) { return look_up(term, false); }
@@ -124,11 +146,9 @@ ResultId Context::require(const Term& term) {
 }
 
 std::optional<ResultId> Context::look_up(const Term& term, bool required) {
-  const std::string_view qualified_name = term.name;
-  if (lookups_ && next_lookup_ < lookups_->size()) {
-    const LookUp& last = (*lookups_)[next_lookup_];
-    if (last.id != SIZE_MAX ? last.id < results.size() && results.info(last.id).name == qualified_name
-                            : last.results_then == results.size() && last.missed == qualified_name) {
+  if (memo_ && next_lookup_ < memo_->lookups.size()) {
+    const StageMemo::LookUp& last = memo_->lookups[next_lookup_];
+    if (last.term == &term && (last.id != SIZE_MAX || last.results_then == results.size())) {
       ++next_lookup_;
       return last.id == SIZE_MAX ? std::nullopt : std::optional<ResultId>(last.id);
     }
@@ -148,10 +168,10 @@ std::optional<ResultId> Context::look_up(const Term& term, bool required) {
                                          "`needs`",
                                          plugin, term.name));
   }
-  const std::optional<ResultId> id = results.find(qualified_name);
-  if (lookups_) {  // (a miss is looked up again once a result has been declared: it may be the one)
-    lookups_->resize(next_lookup_);
-    lookups_->push_back(id ? LookUp{*id, {}, 0} : LookUp{SIZE_MAX, std::string(qualified_name), results.size()});
+  const std::optional<ResultId> id = results.find(term.name);
+  if (memo_) {  // (a miss is looked up again once a result has been declared: it may be the one)
+    memo_->lookups.resize(next_lookup_);
+    memo_->lookups.push_back(StageMemo::LookUp{id.value_or(SIZE_MAX), &term, results.size()});
     ++next_lookup_;
   }
   return id;

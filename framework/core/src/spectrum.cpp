@@ -255,9 +255,11 @@ double merged_integral(Track (&tracks)[K], double lo, double hi, Weight weight) 
 // Two zero-extrapolated spectra (a source times a response: the common case). The limits lie inside both grids,
 // so every node between them has a segment on each side and the loop needs no boundary tests: values come from
 // the segment's right end, f = v[i] − (λ[i] − x)·slope, which is exact at the spectrum's own nodes.
-double pair_integral(const Track& a, const Track& b, double lo, double hi, Weight weight) {
-  const double k = weight == Weight::photons ? photons_per_joule_per_metre : 0.0;
-  auto weighted = [&](double x, double y) { return weight == Weight::photons ? y * x * k : y; };
+// The weight is a template parameter: a test of it per node costs a fifth of the loop. Not inlined: inside
+// band_integral the loop ran out of registers and kept x_prev on the stack (1.2 µs for E-490 × V(λ), 1.0 µs so).
+template <Weight weight>
+[[gnu::noinline]] double pair_integral(const Track& a, const Track& b, double lo, double hi) {
+  auto weighted = [](double x, double y) { return weight == Weight::photons ? y * x * photons_per_joule_per_metre : y; };
   const double *wa = a.w, *va = a.v, *sa = a.slope, *wb = b.w, *vb = b.v, *sb = b.slope;
   Eigen::Index ia = std::upper_bound(wa, wa + a.n, lo) - wa, ib = std::upper_bound(wb, wb + b.n, lo) - wb;
   double x_prev = lo, y_prev = weighted(lo, a.at(lo) * b.at(lo)), sum = 0.0;
@@ -290,8 +292,54 @@ double pair_integral(const Track& a, const Track& b, double lo, double hi, Weigh
   return 0.5 * (sum + (hi - x_prev) * (y_hi + y_prev));
 }
 
-// One spectrum: its own grid between the limits, the end values interpolated; the inner sum is one Eigen
-// reduction over the table itself.
+// Σ (x[i+1] − x[i]) (y[i+1] + y[i]) for i < m, with y = v, or y = v·x for photons. Sixteen partial sums in a fixed
+// order, so every machine gets the same bits: the default build runs the 4-wide vectors as SSE2 pairs, and the
+// AVX2 copy below runs them four at a time (a 1,697-point solar table: 0.81 µs against 0.35 µs on this machine's
+// EPYC; Eigen's redux cannot choose its packets at run time). No FMA target: a fused multiply-add would round
+// differently from the default build.
+template <bool photons>
+[[gnu::always_inline]] inline double trapezoid_sum(const double* x, const double* v, Eigen::Index m) {
+  using v4 = double __attribute__((vector_size(32)));
+  constexpr int block = 16;
+  v4 sum[block / 4] = {};
+  double x_tail[block + 1], v_tail[block + 1];
+  for (Eigen::Index i = 0; i < m; i += block) {
+    const double *xb = x + i, *vb = v + i;
+    if (m - i < block) {  // the last, short block: the last node repeated adds terms (x − x)(…) = 0
+      std::fill(std::copy(xb, x + m + 1, x_tail), x_tail + block + 1, x[m]);
+      std::fill(std::copy(vb, v + m + 1, v_tail), v_tail + block + 1, v[m]);
+      xb = x_tail, vb = v_tail;
+    }
+#pragma GCC unroll 4  // the partial sums stay in registers
+    for (int k = 0; k < block / 4; ++k) {
+      v4 x0, x1, v0, v1;  // unaligned loads (memcpy): the tables promise no alignment
+      __builtin_memcpy(&x0, xb + 4 * k, sizeof x0), __builtin_memcpy(&x1, xb + 4 * k + 1, sizeof x1);
+      __builtin_memcpy(&v0, vb + 4 * k, sizeof v0), __builtin_memcpy(&v1, vb + 4 * k + 1, sizeof v1);
+      sum[k] += photons ? (x1 - x0) * (v1 * x1 + v0 * x0) : (x1 - x0) * (v1 + v0);
+    }
+  }
+  const v4 s = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+  return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
+template <bool photons>
+double trapezoid_sum_default(const double* x, const double* v, Eigen::Index m) {
+  return trapezoid_sum<photons>(x, v, m);
+}
+
+template <bool photons>
+[[gnu::target("avx2")]] double trapezoid_sum_avx2(const double* x, const double* v, Eigen::Index m) {
+  return trapezoid_sum<photons>(x, v, m);
+}
+
+template <bool photons>
+double trapezoid_sum_dispatched(const double* x, const double* v, Eigen::Index m) {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2 ? trapezoid_sum_avx2<photons>(x, v, m) : trapezoid_sum_default<photons>(x, v, m);
+}
+
+// One spectrum: its own grid between the limits, the end values interpolated; the inner sum runs over the table
+// itself.
 double single_integral(const Spectrum& s, const double* slopes, double lo, double hi, Weight weight) {
   const double* w = s.wavelength_m().data();
   const Eigen::Index n = s.size();
@@ -303,16 +351,11 @@ double single_integral(const Spectrum& s, const double* slopes, double lo, doubl
   const Eigen::Index last = at_hi.next;                           // first index with w ≥ hi
   if (first >= last) return 0.5 * (hi - lo) * (y_hi + y_lo);
   const Eigen::Index m = last - first;
-  const Eigen::Map<const Eigen::ArrayXd> x(w + first, m), v(s.value().data() + first, m);
-  double inner = 0.0;
-  if (m > 1) {
-    if (weight == Weight::photons)
-      inner = ((x.tail(m - 1) - x.head(m - 1)) * (v.tail(m - 1) * x.tail(m - 1) + v.head(m - 1) * x.head(m - 1))).sum() * k;
-    else
-      inner = ((x.tail(m - 1) - x.head(m - 1)) * (v.tail(m - 1) + v.head(m - 1))).sum();
-  }
-  const double y_first = weighted(x(0), v(0)), y_last = weighted(x(m - 1), v(m - 1));
-  return 0.5 * ((x(0) - lo) * (y_first + y_lo) + inner + (hi - x(m - 1)) * (y_hi + y_last));
+  const double *x = w + first, *v = s.value().data() + first;
+  const double inner = weight == Weight::photons ? trapezoid_sum_dispatched<true>(x, v, m - 1) * k
+                                                 : trapezoid_sum_dispatched<false>(x, v, m - 1);
+  const double y_first = weighted(x[0], v[0]), y_last = weighted(x[m - 1], v[m - 1]);
+  return 0.5 * ((x[0] - lo) * (y_first + y_lo) + inner + (hi - x[m - 1]) * (y_hi + y_last));
 }
 
 }  // namespace
@@ -346,7 +389,9 @@ double band_integral(std::initializer_list<const Spectrum*> spectra, double lo_m
     case 1: return factor * single_integral(*varying[0], varying[0]->data().slope.data(), lo_m, hi_m, weight);
     case 2: {
       Track t[2] = {track(0), track(1)};
-      if (!t[0].clamp && !t[1].clamp) return factor * pair_integral(t[0], t[1], lo_m, hi_m, weight);
+      if (!t[0].clamp && !t[1].clamp)
+        return factor * (weight == Weight::photons ? pair_integral<Weight::photons>(t[0], t[1], lo_m, hi_m)
+                                                   : pair_integral<Weight::energy>(t[0], t[1], lo_m, hi_m));
       return factor * merged_integral(t, lo_m, hi_m, weight);
     }
     case 3: {

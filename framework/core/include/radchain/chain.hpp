@@ -33,8 +33,7 @@ struct StageSlot {
   const PluginInfo* info = nullptr;
   std::unique_ptr<Params> params;
   std::unique_ptr<Stage> stage;
-  std::vector<ResultId> declarations;  // what the stage declared at its last spectral phase, in order
-  std::vector<LookUp> lookups;         // what it looked up then (found or missed), in order
+  StageMemo memo;                      // what the stage declared and looked up at its last spectral phase
   SpectralExchange exchange;           // what its last spectral phase set for later ones and read from earlier ones
 };
 

@@ -58,12 +58,29 @@ enum class Detail {
               // only break a total down for the report (noise terms, echoes of inputs)
 };
 
-// One look-up a stage made at its last spectral phase: the result it found, or a miss, remembered with the name
-// looked up and the number of results then (a miss stays a miss while no result is declared).
-struct LookUp {
-  ResultId id = SIZE_MAX;  // SIZE_MAX: not found
-  std::string missed;      // the name, for a miss
-  std::size_t results_then = 0;
+// What a stage declared and looked up at its last spectral phase, in order. The next spectral phase's same
+// declarations and look-ups are then comparisons with this (the contract is checked once), and compare contiguous
+// memory instead of the results' own strings: after a spectral phase's integrals have streamed their tables through
+// the cache, every result's strings are cache misses.
+// A term is a constant object, so the same term (the same address, from the same plugin) is the same name and
+// unit; a plain name is compared as text. An equation is always compared as text: a plugin may build it in a
+// buffer it reuses, and a changed one must reach the report. Results are never removed or renamed, so an id
+// remembered for a name keeps it.
+struct StageMemo {
+  struct Declared {
+    ResultId id = 0;
+    const Term* term = nullptr;  // null: a plain name, whose name and unit lead its text
+    std::uint32_t text_begin = 0;
+    std::uint32_t name_size = 0, unit_size = 0, equation_size = 0;
+  };
+  struct LookUp {
+    ResultId id = SIZE_MAX;  // SIZE_MAX: not found (a miss stays a miss while no result is declared)
+    const Term* term = nullptr;
+    std::size_t results_then = 0;
+  };
+  std::vector<Declared> declarations;
+  std::string text;  // the declarations' texts, back to back
+  std::vector<LookUp> lookups;
 };
 
 // What one stage's spectral phase passed on to later stages' spectral phases through results, and what it took
@@ -83,10 +100,9 @@ struct SpectralExchange {
 class Context {
  public:
   Context(Results& results, Light& light, const std::string& section, const std::string& plugin,
-          Detail detail = Detail::full, std::vector<ResultId>* declarations = nullptr,
-          std::vector<LookUp>* lookups = nullptr, SpectralExchange* exchange = nullptr)
-      : results(results), light(light), section(section), plugin(plugin), detail(detail), declarations_(declarations),
-        lookups_(lookups), exchange_(exchange) {}
+          Detail detail = Detail::full, StageMemo* memo = nullptr, SpectralExchange* exchange = nullptr)
+      : results(results), light(light), section(section), plugin(plugin), detail(detail), memo_(memo),
+        exchange_(exchange) {}
 
   Results& results;
   Light& light;
@@ -126,11 +142,12 @@ class Context {
  private:
   ResultId declare_result(const Term* term, std::string_view name, std::string_view si_unit, std::string_view equation,
                           std::string_view display_unit);
+  void remember_declaration(ResultId id, const Term* term, std::string_view name, std::string_view si_unit,
+                            std::string_view equation);
   std::optional<ResultId> look_up(const Term& term, bool required);
 
-  std::vector<ResultId>* declarations_;  // this stage's declarations at its last spectral phase, in order
+  StageMemo* memo_;  // this stage's last spectral phase (null in the scalar phase)
   std::size_t next_declaration_ = 0;
-  std::vector<LookUp>* lookups_;         // what it looked up, in order
   std::size_t next_lookup_ = 0;
   SpectralExchange* exchange_;           // the spectral phase's (null in the scalar phase)
 };

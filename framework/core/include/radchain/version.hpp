@@ -3,7 +3,8 @@
 
 namespace radchain {
 // Bumped whenever PluginInfo, Stage, Context, Params or any type they expose changes layout or meaning.
-inline constexpr std::uint32_t plugin_abi_version = 6;  // 5: Stage::power_law_in_signal(); 6: Context remembers misses,
-                                                        // Context::set_in_spectral_phase(), read_in_spectral_phase()
+inline constexpr std::uint32_t plugin_abi_version = 7;  // 5: Stage::power_law_in_signal(); 6: Context remembers misses,
+                                                        // Context::set_in_spectral_phase(), read_in_spectral_phase();
+                                                        // 7: Context remembers the term of each declaration
 inline constexpr const char* framework_version = "0.1.0";
 }  // namespace radchain
