@@ -171,6 +171,10 @@ TEST(PluginContract, ARepeatedDeclarationKeepsItsIdAndTakesANewEquation) {
   ASSERT_EQ(declarations.size(), 2u);
   EXPECT_EQ(declarations[0].term, &vocabulary::criterion_margin);
   EXPECT_EQ(declarations[1].term, nullptr);
+  // String literals are recognised as such (read-only segments), a std::string's buffer is not.
+  EXPECT_EQ(declarations[0].literal[2], nullptr);
+  EXPECT_NE(declarations[1].literal[0], nullptr);
+  EXPECT_NE(declarations[1].literal[2], nullptr);
   equation.replace(equation.find('T'), 1, "5");
   {
     Context c = phase();

@@ -6,8 +6,15 @@
 
 #include <fmt/format.h>
 
+#include <link.h>
+
 #include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <mutex>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace radchain {
 
@@ -61,6 +68,47 @@ std::string to_string(RadiationForm form) {
 }
 
 namespace {
+// Whether the text lies in a segment a loaded object maps without write permission (a string literal's .rodata):
+// such text cannot change while the object stays loaded, and a plugin's object stays loaded while its stages live.
+// The read-only segments are listed again whenever objects were loaded or unloaded since (dl_iterate_phdr's
+// counters); this runs when a stage's declaration is first remembered, not in the repeated spectral phases.
+bool in_read_only_segment(std::string_view text) {
+  if (text.empty()) return false;
+  struct Segments {
+    unsigned long long adds = ~0ULL, subs = ~0ULL;
+    std::vector<std::pair<std::uintptr_t, std::uintptr_t>> read_only;  // [begin, end)
+  };
+  static std::mutex mutex;
+  static Segments segments;
+  const std::lock_guard lock(mutex);
+  Segments now;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t size, void* data) {
+        auto* s = static_cast<Segments*>(data);
+        if (size < offsetof(dl_phdr_info, dlpi_subs) + sizeof info->dlpi_subs) return 1;  // no counters: list anew
+        s->adds = info->dlpi_adds, s->subs = info->dlpi_subs;
+        return 1;
+      },
+      &now);
+  if (now.adds != segments.adds || now.subs != segments.subs || now.adds == ~0ULL) {
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, std::size_t, void* data) {
+          auto* s = static_cast<Segments*>(data);
+          for (int i = 0; i < info->dlpi_phnum; ++i) {
+            const ElfW(Phdr)& ph = info->dlpi_phdr[i];
+            if (ph.p_type == PT_LOAD && !(ph.p_flags & PF_W))
+              s->read_only.emplace_back(info->dlpi_addr + ph.p_vaddr, info->dlpi_addr + ph.p_vaddr + ph.p_memsz);
+          }
+          return 0;
+        },
+        &now);
+    segments = std::move(now);
+  }
+  const auto begin = reinterpret_cast<std::uintptr_t>(text.data()), end = begin + text.size();
+  return std::any_of(segments.read_only.begin(), segments.read_only.end(),
+                     [&](const auto& r) { return r.first <= begin && end <= r.second; });
+}
+
 // The contract a plugin states (PluginInfo::publishes, needs), or nothing for a stage the host did not load
 // (a test's hand-built stage).
 const PluginInfo* contract_of(const std::string& plugin) { return PluginHost::instance().loaded(plugin); }
@@ -72,21 +120,26 @@ ResultId Context::declare(std::string_view name, std::string_view si_unit, std::
 }
 
 ResultId Context::declare(const Term& term, std::string_view equation, std::string_view display_unit) {
-  return declare_result(&term, term.key(), term.unit, equation, display_unit);
+  return declare_result(&term, {}, term.unit, equation, display_unit);
 }
 
+// `name` is empty for a term: its key, read only when the memo does not answer (the term's text is one more cache
+// miss in a cold spectral phase).
 ResultId Context::declare_result(const Term* term, std::string_view name, std::string_view si_unit,
                                  std::string_view equation, std::string_view display_unit) {
   if (memo_ && next_declaration_ < memo_->declarations.size()) {
     // The same declaration as at the last spectral phase (checked against the contract when it was first made)?
     const StageMemo::Declared& last = memo_->declarations[next_declaration_];
     const std::string_view text = std::string_view(memo_->text).substr(last.text_begin);
+    auto same = [&](int k, std::string_view now, std::size_t begin, std::size_t size) {
+      return now.size() == size && (now.data() == last.literal[k] || text.substr(begin, size) == now);
+    };
     const bool same_name_and_unit = term ? last.term == term
-                                         : !last.term && text.substr(0, last.name_size) == name &&
-                                               text.substr(last.name_size, last.unit_size) == si_unit;
+                                         : !last.term && same(0, name, 0, last.name_size) &&
+                                               same(1, si_unit, last.name_size, last.unit_size);
     if (same_name_and_unit) {
       const ResultId id = last.id;
-      if (text.substr(last.name_size + last.unit_size, last.equation_size) != equation) {
+      if (!same(2, equation, last.name_size + last.unit_size, last.equation_size)) {
         results.declare(results.info(id).name, results.info(id).si_unit, plugin, std::string(equation));  // relabel
         memo_->declarations.resize(next_declaration_);  // and remember it (text from here on)
         memo_->text.resize(last.text_begin);
@@ -96,6 +149,7 @@ ResultId Context::declare_result(const Term* term, std::string_view name, std::s
       return id;
     }
   }
+  if (term) name = term->key();
   std::string qualified = section + "." + std::string(name);
   if (!term) {
     if (const Term* known = vocabulary::term_of(qualified))
@@ -131,8 +185,11 @@ void Context::remember_declaration(ResultId id, const Term* term, std::string_vi
   if (!term) {
     d.name_size = static_cast<std::uint32_t>(name.size()), d.unit_size = static_cast<std::uint32_t>(si_unit.size());
     memo_->text.append(name).append(si_unit);
+    if (in_read_only_segment(name)) d.literal[0] = name.data();
+    if (in_read_only_segment(si_unit)) d.literal[1] = si_unit.data();
   }
   memo_->text.append(equation);
+  if (in_read_only_segment(equation)) d.literal[2] = equation.data();
   memo_->declarations.push_back(d);
 }
 

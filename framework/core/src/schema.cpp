@@ -100,7 +100,8 @@ bool ParamSpec::in_range(double v) const {
 Params::Params(std::string section, std::string plugin, const Schema* schema)
     : section_(std::move(section)), plugin_(std::move(plugin)), schema_(schema) {
   entries_.resize(schema_->size());
-  for (std::size_t i = 0; i < schema_->size(); ++i) entries_[i].spec = &(*schema_)[i];
+  keys_.resize(schema_->size());
+  for (std::size_t i = 0; i < schema_->size(); ++i) entries_[i].spec = &(*schema_)[i], keys_[i] = (*schema_)[i].key;
 }
 
 std::string Params::context() const {
@@ -108,8 +109,11 @@ std::string Params::context() const {
 }
 
 const Params::Entry& Params::entry(std::string_view key) const {
-  for (const auto& e : entries_)
-    if (e.spec->key == key) return e;
+  // Size and last letter first: a schema's keys share sizes ("band_min", "band_max", "distance"), and a call into
+  // memcmp per candidate cost more than the scan.
+  for (std::size_t i = 0; i < keys_.size(); ++i)
+    if (keys_[i].size() == key.size() && !key.empty() && keys_[i].back() == key.back() && keys_[i] == key)
+      return entries_[i];
   throw std::logic_error("plugin \"" + plugin_ + "\" asked for \"" + std::string(key) + "\", which is not in its schema");
 }
 Params::Entry& Params::entry(std::string_view key) {

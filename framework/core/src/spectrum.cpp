@@ -121,9 +121,9 @@ Spectrum::Spectrum(Eigen::ArrayXd wavelength_m, Eigen::ArrayXd value, std::strin
       Data{std::move(wavelength_m), std::move(value), std::move(slope), std::move(unit), extrapolation});
 }
 
-const Spectrum::Data& Spectrum::data() const {
-  static const Data empty_data{};
-  return data_ ? *data_ : empty_data;
+const Spectrum::Data& Spectrum::empty_data() {
+  static const Data empty{};
+  return empty;
 }
 
 Spectrum Spectrum::constant(double value, std::string unit, double lo_m, double hi_m) {

@@ -63,15 +63,17 @@ enum class Detail {
 // memory instead of the results' own strings: after a spectral phase's integrals have streamed their tables through
 // the cache, every result's strings are cache misses.
 // A term is a constant object, so the same term (the same address, from the same plugin) is the same name and
-// unit; a plain name is compared as text. An equation is always compared as text: a plugin may build it in a
-// buffer it reuses, and a changed one must reach the report. Results are never removed or renamed, so an id
-// remembered for a name keeps it.
+// unit. A text (a plain name, a unit, an equation) that was a string literal, i.e. lay in a segment a loaded object
+// maps read-only, is the same text when the same address comes again; any other text is compared with the copy
+// kept here: a plugin may build an equation in a buffer it reuses, and a changed one must reach the report.
+// Results are never removed or renamed, so an id remembered for a name keeps it.
 struct StageMemo {
   struct Declared {
     ResultId id = 0;
     const Term* term = nullptr;  // null: a plain name, whose name and unit lead its text
     std::uint32_t text_begin = 0;
     std::uint32_t name_size = 0, unit_size = 0, equation_size = 0;
+    const char* literal[3] = {nullptr, nullptr, nullptr};  // name, unit, equation: the literal's address, or null
   };
   struct LookUp {
     ResultId id = SIZE_MAX;  // SIZE_MAX: not found (a miss stays a miss while no result is declared)

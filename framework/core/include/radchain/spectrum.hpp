@@ -74,7 +74,9 @@ class Spectrum {
     std::string unit;
     Extrapolation extrapolation = Extrapolation::zero;
   };
-  const Data& data() const;  // the empty spectrum's data when default-constructed
+  // The empty spectrum's data when default-constructed. Inline: every accessor goes through it, from plugins too.
+  const Data& data() const { return data_ ? *data_ : empty_data(); }
+  static const Data& empty_data();
   std::shared_ptr<const Data> data_;
 };
 
