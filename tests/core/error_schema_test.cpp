@@ -110,6 +110,25 @@ TEST(Schema, ValidatesAndConvertsToSi) {
   EXPECT_THROW(p.get("no_such_key"), std::logic_error);
 }
 
+// Params finds a key by its size and first and last 8 bytes, and compares a key longer than 16 bytes whole: keys
+// alike at both ends and of one size are told apart, and a key's prefix or suffix is no match.
+TEST(Schema, KeysAlikeAtBothEndsAreToldApart) {
+  static const Schema schema = {
+      number("detector_band_min_edge", "1").fallback("1"), number("detector_band_max_edge", "2").fallback("2"),
+      number("band_min", "3").fallback("3"), number("band_max", "4").fallback("4"), number("z", "5").fallback("5"),
+  };
+  const ConfigValue root = parse_toml_text("[detector]\nplugin = \"x\"\n", "t.toml");
+  const Params p = validate_section(schema, *root.find("detector"), ValidationContext{"t.toml", "detector", "x"});
+  EXPECT_EQ(p.get("detector_band_min_edge"), 1.0);
+  EXPECT_EQ(p.get("detector_band_max_edge"), 2.0);
+  EXPECT_EQ(p.get("band_min"), 3.0);
+  EXPECT_EQ(p.get("band_max"), 4.0);
+  EXPECT_EQ(p.get("z"), 5.0);
+  EXPECT_THROW(p.get("detector_band_mid_edge"), std::logic_error);
+  EXPECT_THROW(p.get("band_mi"), std::logic_error);
+  EXPECT_THROW(p.get(""), std::logic_error);
+}
+
 TEST(Schema, ErrorMessages) {
   const std::string head = "[optics]\nplugin = \"scope\"\n";
   EXPECT_EQ(error_of(head + "aperture = \"15 kg\"\n"),

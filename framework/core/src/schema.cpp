@@ -4,8 +4,10 @@
 #include "radchain/spectrum_csv.hpp"
 #include "radchain/units.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
@@ -100,8 +102,14 @@ bool ParamSpec::in_range(double v) const {
 Params::Params(std::string section, std::string plugin, const Schema* schema)
     : section_(std::move(section)), plugin_(std::move(plugin)), schema_(schema) {
   entries_.resize(schema_->size());
-  keys_.resize(schema_->size());
-  for (std::size_t i = 0; i < schema_->size(); ++i) entries_[i].spec = &(*schema_)[i], keys_[i] = (*schema_)[i].key;
+  key_tags_.reserve(schema_->size());
+  for (std::size_t i = 0; i < schema_->size(); ++i) entries_[i].spec = &(*schema_)[i], key_tags_.emplace_back((*schema_)[i].key);
+}
+
+Params::KeyTag::KeyTag(std::string_view key) : size(key.size()) {
+  const std::size_t n = std::min<std::size_t>(key.size(), 8);
+  std::memcpy(&head, key.data(), n);
+  std::memcpy(&tail, key.data() + key.size() - n, n);
 }
 
 std::string Params::context() const {
@@ -109,11 +117,9 @@ std::string Params::context() const {
 }
 
 const Params::Entry& Params::entry(std::string_view key) const {
-  // Size and last letter first: a schema's keys share sizes ("band_min", "band_max", "distance"), and a call into
-  // memcmp per candidate cost more than the scan.
-  for (std::size_t i = 0; i < keys_.size(); ++i)
-    if (keys_[i].size() == key.size() && !key.empty() && keys_[i].back() == key.back() && keys_[i] == key)
-      return entries_[i];
+  const KeyTag tag(key);
+  for (std::size_t i = 0; i < key_tags_.size(); ++i)
+    if (key_tags_[i] == tag && (key.size() <= 16 || entries_[i].spec->key == key)) return entries_[i];
   throw std::logic_error("plugin \"" + plugin_ + "\" asked for \"" + std::string(key) + "\", which is not in its schema");
 }
 Params::Entry& Params::entry(std::string_view key) {

@@ -4,6 +4,7 @@
 #include "radchain/config.hpp"
 #include "radchain/spectrum.hpp"
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -126,9 +127,15 @@ class Params {
   std::string section_, plugin_;
   const Schema* schema_;
   std::vector<Entry> entries_;  // one per schema entry, never resized after construction
-  // entries_[i].spec->key, side by side: a look-up by key (a stage's prepare makes a dozen) compares sizes in one
-  // or two cache lines instead of following each entry's spec pointer.
-  std::vector<std::string_view> keys_;
+  // entries_[i].spec->key as its size and first and last 8 bytes, side by side: a look-up by key (a stage's prepare
+  // makes a dozen) compares words in a few cache lines instead of following each entry's spec pointer to its text.
+  // A key of up to 16 bytes is its tag; a longer one is compared whole once its tag matches.
+  struct KeyTag {
+    std::uint64_t size = 0, head = 0, tail = 0;
+    explicit KeyTag(std::string_view key);
+    bool operator==(const KeyTag&) const = default;
+  };
+  std::vector<KeyTag> key_tags_;
 };
 
 // Everything validation needs besides the section table.
