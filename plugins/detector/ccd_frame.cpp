@@ -135,7 +135,7 @@ class CcdFrame final : public LaneStage<CcdFrame> {
   }
 
  private:
-  std::string ensquared_equation(bool psf) const {
+  const char* ensquared_equation(bool psf) const {  // literals: the declaration's memo knows them by address
     if (ensquared_entry_.given) return "input EE";
     if (psf_wavelength_ && f_number_)
       return "Airy PSF over a centred square of side n × pitch: (4/π) ∫0^{π/4} EC(n p/(2 cos θ)) dθ, "

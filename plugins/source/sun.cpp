@@ -56,7 +56,10 @@ const Schema& schema() {
 class Sun final : public Stage {
  public:
   explicit Sun(const Params& p)
-      : params_(p), distance_(p.handle("distance")), magnitude_(p.handle("visual_magnitude")) {
+      : params_(p), distance_(p.handle("distance")), magnitude_(p.handle("visual_magnitude")),
+        total_irradiance_(p.entry("total_irradiance")), illuminance_pin_(p.entry("illuminance")),
+        day_of_year_(p.entry("day_of_year")), band_min_(p.entry("band_min")), solar_zenith_(p.entry("solar_zenith")),
+        planck_(p.text("model") == "planck") {
     if (p.text("model") == "planck" && !p.has("total_irradiance"))
       p.reject("model", "model = \"planck\" needs total_irradiance, e.g. \"1361 W/m2\"");
     if (p.has("band_min") != p.has("band_max"))
@@ -68,44 +71,48 @@ class Sun final : public Stage {
       p.reject(p.has("z_band_min") ? "z_band_min" : "z_band_max", "a pinned z needs the working band (band_min, band_max)");
   }
 
+  // (Presence is read at each spectral phase, from entries kept at construction: a sweep may give a key the file
+  // left out.)
   void prepare(Context& c) override {
     Spectrum spectrum;
-    if (params_.text("model") == "planck") {
+    if (planck_) {
       const double t = params_.get("temperature");
-      spectrum = physics::blackbody_exitance_spectrum(t).scaled(params_.get("total_irradiance") /
-                                                                physics::blackbody_exitance(t));
+      spectrum = physics::blackbody_exitance_spectrum(t).scaled(total_irradiance_.number / physics::blackbody_exitance(t));
     } else {
       spectrum = params_.spectrum("table");
-      if (params_.has("total_irradiance")) spectrum = spectrum.scaled(params_.get("total_irradiance") / spectrum.integral());
+      if (total_irradiance_.present) spectrum = spectrum.scaled(total_irradiance_.number / spectrum.integral());
     }
     const Spectrum& v = params_.spectrum("v_lambda");
     const double computed_illuminance = physics::luminous(spectrum, v);
+    const bool pinned = illuminance_pin_.present;
     illuminance_ = computed_illuminance;
-    if (params_.has("illuminance")) {
-      spectrum = spectrum.scaled(params_.get("illuminance") / computed_illuminance);
+    if (pinned) {
+      spectrum = spectrum.scaled(illuminance_pin_.number / computed_illuminance);
       illuminance_ = physics::luminous(spectrum, v);  // the pinned value, up to rounding
     }
     c.light.illumination = spectrum;
     total_ = spectrum.integral();
     id_total_ = c.declare("total_irradiance", "W m-2", "∫ E_λ dλ over the spectrum (solar constant at 1 AU)", "W m-2");
-    id_illuminance_ = c.declare(vocabulary::source_illuminance, "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ, at 1 AU" +
-                                std::string(params_.has("illuminance") ? " (pinned paper value)" : ""), "lx");
-    if (params_.has("illuminance"))
+    id_illuminance_ = c.declare(vocabulary::source_illuminance,
+                                pinned ? "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ, at 1 AU (pinned paper value)"
+                                       : "CIE: E_v = 683 lm/W ∫ V(λ) E_λ dλ, at 1 AU",
+                                "lx");
+    if (pinned)
       id_illuminance_computed_ = c.declare("illuminance_computed", "lx", "683 ∫ V E_λ dλ of the unscaled spectrum", "lx");
     computed_illuminance_ = computed_illuminance;
     id_efficacy_ = c.declare("luminous_efficacy", "lm W-1", "E_v / E_e", "lm W-1");
     id_magnitude_ = c.declare(vocabulary::source_visual_magnitude, "Pan 2010 eq. (1) reference m_sun");
-    dated_ = params_.has("day_of_year");
+    dated_ = day_of_year_.present;
     id_distance_ = c.declare(vocabulary::source_distance,
                              dated_ ? "r = 1 AU ((r₀/r)²)^(−½) on day d (Spencer 1971)" : "input", "AU");
     if (dated_)
       id_declination_ = c.declare(vocabulary::source_solar_declination,
                                   "δ(d) = 0.006918 − 0.399912 cos Γ + … (Spencer 1971, Γ = 2π(d−1)/365)", "deg");
-    has_band_ = params_.has("band_min");
+    has_band_ = band_min_.present;
     if (has_band_) prepare_band(c, spectrum);
-    if (params_.has("solar_zenith")) {
+    if (solar_zenith_.present) {
       id_zenith_ = c.declare(vocabulary::source_solar_zenith, "input θ_s", "deg");
-      c.set_in_spectral_phase(*id_zenith_, params_.get("solar_zenith"));  // an atmosphere's spectral phase reads it next
+      c.set_in_spectral_phase(*id_zenith_, solar_zenith_.number);  // an atmosphere's spectral phase reads it next
     }
   }
 
@@ -149,7 +156,7 @@ class Sun final : public Stage {
   }
 
   void evaluate(Context& c) override {
-    const double day = dated_ ? params_.get("day_of_year") : 0.0;
+    const double day = dated_ ? day_of_year_.number : 0.0;
     const double distance = dated_ ? physics::earth_sun_distance_au(day) * constants::astronomical_unit_m : *distance_;
     const double au_over_d = constants::astronomical_unit_m / distance;
     const double inverse_square = au_over_d * au_over_d;
@@ -161,7 +168,7 @@ class Sun final : public Stage {
     c.results.set(id_magnitude_, *magnitude_);
     c.results.set(id_distance_, distance);
     if (id_declination_) c.results.set(*id_declination_, physics::solar_declination_rad(day));
-    if (id_zenith_) c.results.set(*id_zenith_, params_.get("solar_zenith"));
+    if (id_zenith_) c.results.set(*id_zenith_, solar_zenith_.number);
     if (has_band_) {
       for (int i = 0; i < 2; ++i) {
         c.results.set(id_z_[i], z_[i]);
@@ -175,6 +182,8 @@ class Sun final : public Stage {
   const Params& params_;
   const double* distance_;
   const double* magnitude_;
+  const Params::Entry &total_irradiance_, &illuminance_pin_, &day_of_year_, &band_min_, &solar_zenith_;
+  const bool planck_;
   std::optional<ResultId> id_illuminance_computed_;  // only when the illuminance is pinned
   double total_ = 0, illuminance_ = 0, computed_illuminance_ = 0;
   ResultId id_total_{}, id_illuminance_{}, id_efficacy_{}, id_magnitude_{}, id_distance_{};
