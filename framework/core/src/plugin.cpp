@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <mutex>
 #include <stdexcept>
 #include <utility>
@@ -102,11 +103,13 @@ bool in_read_only_segment(std::string_view text) {
           return 0;
         },
         &now);
+    std::sort(now.read_only.begin(), now.read_only.end());  // segments do not overlap
     segments = std::move(now);
   }
   const auto begin = reinterpret_cast<std::uintptr_t>(text.data()), end = begin + text.size();
-  return std::any_of(segments.read_only.begin(), segments.read_only.end(),
-                     [&](const auto& r) { return r.first <= begin && end <= r.second; });
+  const auto after = std::upper_bound(segments.read_only.begin(), segments.read_only.end(),
+                                      std::pair(begin, UINTPTR_MAX));  // the first segment starting after `begin`
+  return after != segments.read_only.begin() && end <= std::prev(after)->second;
 }
 
 // The contract a plugin states (PluginInfo::publishes, needs), or nothing for a stage the host did not load
