@@ -114,7 +114,7 @@ class Context {
   bool full_detail() const { return detail == Detail::full; }
 
   // Declares "<section>.<name>". A stage declares the same results in the same order at every spectral phase;
-  // then this is a comparison of names, not a look-up.
+  // then this is a comparison with its StageMemo, not a look-up (cheapest with literal texts).
   // A result only this stage's report shows; a name of the vocabulary must be declared as its Term.
   ResultId declare(std::string_view name, std::string_view si_unit, std::string_view equation,
                    std::string_view display_unit = {});
