@@ -144,8 +144,8 @@ ResultId Context::declare_result(const Term* term, std::string_view name, std::s
       const ResultId id = last.id;
       if (!same(2, equation, last.name_size + last.unit_size, last.equation_size)) {
         results.declare(results.info(id).name, results.info(id).si_unit, plugin, std::string(equation));  // relabel
-        memo_->declarations.resize(next_declaration_);  // and remember it (text from here on)
-        memo_->text.resize(last.text_begin);
+        memo_->text.resize(last.text_begin);  // and remember it anew (`last` goes with the resize below)
+        memo_->declarations.resize(next_declaration_);
         remember_declaration(id, term, name, si_unit, equation);
       }
       ++next_declaration_;
