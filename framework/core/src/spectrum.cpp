@@ -294,9 +294,9 @@ template <Weight weight>
 
 // Σ (x[i+1] − x[i]) (y[i+1] + y[i]) for i < m, with y = v, or y = v·x for photons. Sixteen partial sums in a fixed
 // order, so every machine gets the same bits: the default build runs the 4-wide vectors as SSE2 pairs, and the
-// AVX2 copy below runs them four at a time (a 1,697-point solar table: 0.81 µs against 0.35 µs on this machine's
-// EPYC; Eigen's redux cannot choose its packets at run time). No FMA target: a fused multiply-add would round
-// differently from the default build.
+// AVX2 copy below runs them four at a time, chosen at run time (E-490's 1,697 points: 0.43 µs on this machine's
+// EPYC, 0.63 µs through Eigen's SSE2 redux, whose packets are fixed when it is compiled). No FMA target: a fused
+// multiply-add would round differently from the default build.
 template <bool photons>
 [[gnu::always_inline]] inline double trapezoid_sum(const double* x, const double* v, Eigen::Index m) {
   using v4 = double __attribute__((vector_size(32)));
