@@ -60,7 +60,7 @@ class Sun final : public Stage {
         total_irradiance_(p.entry("total_irradiance")), illuminance_pin_(p.entry("illuminance")),
         day_of_year_(p.entry("day_of_year")), band_min_(p.entry("band_min")), solar_zenith_(p.entry("solar_zenith")),
         planck_(p.text("model") == "planck") {
-    if (p.text("model") == "planck" && !p.has("total_irradiance"))
+    if (planck_ && !total_irradiance_.present)
       p.reject("model", "model = \"planck\" needs total_irradiance, e.g. \"1361 W/m2\"");
     if (p.has("band_min") != p.has("band_max"))
       p.reject(p.has("band_min") ? "band_min" : "band_max", "band_min and band_max go together (the working band λ1..λ2)");

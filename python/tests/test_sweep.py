@@ -205,7 +205,7 @@ def test_grid_is_factored_and_agrees_with_the_per_point_sweep(cli, sbv):
     t = np.tile(df["detector.integration_time_s"].to_numpy()[:40], 40)
     per_point = radchain.load(sbv).sweep({"optics.aperture": d, "detector.integration_time": t}, results="target.magnitude")
     np.testing.assert_allclose(df["target.magnitude"], per_point["target.magnitude"], rtol=1e-10, atol=0)
-    # and the CLI's .npy of the same sweep, to the bit
+    # and the CLI's CSV of the same sweep, to its 10 digits
     header, ref = cli_csv(cli, sbv, "--set", "optics.aperture=15 cm:30 cm:40", "--set", "detector.integration_time=0.1 s:2 s:40",
                           "--results", "target.magnitude")
     np.testing.assert_allclose(df["target.magnitude"], ref[:, 2], rtol=6e-10, atol=0)  # the CSV's 10 digits
