@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
+#include <cstdlib>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -191,6 +191,17 @@ bool is_complete_png(const std::string& path) {
   return in && std::equal(std::begin(tail), std::end(tail), std::begin(iend));
 }
 
+// A folder only this process's user can enter, under TMPDIR, with a name nobody can predict (mkdtemp: created
+// exclusively, mode 0700). A predictable name that merely had to exist let another local user pre-create it, swap
+// the script before gnuplot read it (commands run as us) or plant the log as a link to one of our files.
+fs::path private_folder() {
+  std::string pattern = (fs::temp_directory_path() / "radchain-plot-XXXXXX").string();
+  if (::mkdtemp(pattern.data()) == nullptr)
+    throw WriteError("cannot create a private folder for gnuplot under " + fs::temp_directory_path().string() + ": " +
+                     std::strerror(errno));
+  return pattern;
+}
+
 // Runs `gnuplot -c script args…` without a shell, its output into `log`. Returns false when gnuplot fails;
 // throws when it cannot be started at all.
 bool run_gnuplot(const std::vector<std::string>& arguments, const fs::path& log) {
@@ -201,7 +212,7 @@ bool run_gnuplot(const std::vector<std::string>& arguments, const fs::path& log)
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0600);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   pid_t pid = 0;
   const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);
@@ -221,9 +232,7 @@ void draw(const std::string& png_path, const std::function<void(std::ostream&)>&
           const std::function<std::string(const std::string& terminal)>& head, const char* script,
           const std::vector<std::string>& arguments) {
   AtomicFile png(png_path, "--plot");
-  static std::atomic<int> counter{0};
-  const fs::path dir = fs::temp_directory_path() / fmt::format("radchain-plot-{}-{}", ::getpid(), counter++);
-  fs::create_directories(dir);
+  const fs::path dir = private_folder();
   const fs::path data = dir / "data.tsv", log = dir / "gnuplot.log";
   auto script_path = [&](const std::string& terminal) { return dir / ("plot-" + terminal + ".gp"); };
   // The data and the scripts (one per terminal tried), all written before gnuplot runs: a write that fails (a full
