@@ -19,6 +19,7 @@ packages=(
   libcfitsio-dev          # FITS frames: OpenImageIO 2.4's FITS plugin shifts rows (framework/imaging/src/image_io.cpp)
   python3-dev python3-pybind11 pybind11-dev   # `import radchain` (python/, docs/python.md), built for /usr/bin/python3
   python3-numpy python3-pandas python3-pytest # its arrays and tables, and its tests
+  python3-synphot         # the independent photometry reference of the differential tests (python/tests)
   python3-astropy         # Result.quantity(): results as astropy Quantities (and the check of radchain's units against astropy's)
   python3-distributed python3-dask          # radchain.dask: sweeps and catalogues over a dask cluster (docs/python.md)
   python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib   # examples/notebooks, run by the tests

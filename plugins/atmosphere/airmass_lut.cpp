@@ -128,6 +128,7 @@ class AirmassLut final : public Stage {
     const double x = view_airmass_;
     const auto [i, w] = bracket(x);
     const Spectrum path = transmittance_at(x);
+    note_table(c.light, path, "tables of " + params_.context());
     const double lo = c.light.has_report_band() ? c.light.report_band_min_m : 400e-9;
     const double hi = c.light.has_report_band() ? c.light.report_band_max_m : 700e-9;
     if (params_.flag("down_path")) {

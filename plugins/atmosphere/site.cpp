@@ -20,7 +20,6 @@
 #include "radchain/plugin.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 namespace {
@@ -56,12 +55,6 @@ Spectrum ab_radiance_per_arcsec2() {
   return physics::ab_reference_spectrum(1e-7, 3e-5, 20001).scaled(1.0 / arcsec2_sr, "W m-2 sr-1 m-1");
 }
 
-std::string nm_range(const Spectrum& s) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.1f-%.1f nm", s.min_wavelength_m() * 1e9, s.max_wavelength_m() * 1e9);
-  return text;
-}
-
 class Site final : public Stage {
  public:
   explicit Site(const Params& p)
@@ -85,6 +78,7 @@ class Site final : public Stage {
       const Spectrum path(table.wavelength_m(), table.value().max(0.0).pow(power), "1", Extrapolation::zero);
       c.light.up_path_transmittance =
           c.light.up_path_transmittance.empty() ? path : c.light.up_path_transmittance.product(path, "1");
+      note_table(c.light, params_, "transmittance_table");
     }
     id_airmass_ = c.declare(vocabulary::atmosphere_airmass, "input X");
     id_transmittance_ = c.declare("transmittance", "1", params_.has("extinction") ? "10^{-0.4 k X} (Bouguer, in magnitudes)" : "1 (the table's τ(λ)^{X/X_table} is spectral)");

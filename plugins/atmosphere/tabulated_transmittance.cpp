@@ -35,6 +35,7 @@ class TabulatedTransmittance final : public Stage {
     Eigen::ArrayXd tau = table.value().max(0.0).pow(x);
     const Spectrum path(table.wavelength_m(), tau, "1", Extrapolation::zero);
     if (params_.flag("down_path")) c.light.illumination = c.light.illumination.product(path, c.light.illumination.unit());
+    note_table(c.light, params_, "table");
     c.light.up_path_transmittance =
         c.light.up_path_transmittance.empty() ? path : c.light.up_path_transmittance.product(path, "1");
     id_tau_ = c.declare("transmittance", "1", "band mean of τ(λ)^X over the reporting band (or 400-700 nm)");

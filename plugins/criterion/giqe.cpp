@@ -21,6 +21,8 @@
 #include "radchain/look.hpp"
 #include "radchain/plugin.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <numbers>
 
@@ -35,11 +37,14 @@ const Schema& schema() {
           .described("pixel pitch p, one sample (default: the detector's detector.pixel_pitch)"),
       quantity("wavelength", "m", "0.65 um").needed().above(0).described("wavelength of the diffraction MTF (band centre)"),
       quantity("jitter_rms", "m", "1 um").fallback("0 m").at_least(0).described("rms line-of-sight jitter on the focal plane"),
-      number("smear_pixels", "0.2").fallback("0").at_least(0).described("linear smear during the integration, in pixels"),
+      number("smear_pixels", "0.2").fallback("0").at_least(0)
+          .described("linear smear during the integration, in pixels (default: the ground's motion beyond one line "
+                     "during the detector's integration time, 0 when it is the line time)"),
       quantity("diffusion_rms", "m", "1 um").fallback("0 m").at_least(0).described("rms of a Gaussian charge-diffusion spread"),
       number("wavefront_error", "0.05").fallback("0").at_least(0).below(0.18)
           .described("rms wavefront error in waves (Shannon's aberration transfer factor)"),
-      number("tdi_stages", "32").fallback("1").at_least(1).described("TDI stages for the synchronisation MTF"),
+      number("tdi_stages", "32").fallback("1").at_least(1)
+          .described("TDI stages for the synchronisation MTF (default: the detector's detector.tdi_stages, else 1)"),
       number("tdi_mismatch", "0.01").fallback("0").at_least(0).below(1)
           .described("TDI line-rate mismatch per stage, as a fraction of a pixel"),
       quantity("fried_parameter", "m", "0.5 m").above(0)
@@ -67,6 +72,11 @@ class Giqe final : public Stage {
     f_number_ = c.require(vocabulary::optics_f_number);
     obscuration_ = c.find(vocabulary::optics_obscuration);
     detector_snr_ = params_.has("snr") ? std::nullopt : c.find(vocabulary::detector_snr);
+    // Stated once: the TDI stages and the integration time are the detector's (sensor_file.cpp refuses a second,
+    // different value here).
+    detector_tdi_ = params_.given("tdi_stages") ? std::nullopt : c.find(vocabulary::detector_tdi_stages);
+    integration_time_ = c.find(vocabulary::detector_integration_time);
+    ground_speed_ = c.find(vocabulary::platform_ground_speed);
     if (!params_.has("snr") && !detector_snr_)
       params_.reject("snr", "no SNR: give snr here, or use a detector that publishes detector.snr");
     id_gsd_ = c.declare("gsd_geometric_mean", "m", "√(GSD_across · GSD_along) at the look, spherical Earth: the ground-plane GSD", "m");
@@ -121,7 +131,28 @@ class Giqe final : public Stage {
     const double gsd = giqe4_ ? gsd_ground : physics::giqe5_weighted_gsd_m(gsd_normal, elevation);
     const double n = c.results.value(f_number_), lambda = *wavelength_;
     const double eps = obscuration_ ? c.results.value(*obscuration_) : 0.0;
-    const physics::MtfBudget budget{lambda,         n, eps, p, *jitter_, *smear_ * p, *diffusion_, *wfe_, *tdi_stages_,
+    const double tdi_stages = detector_tdi_ ? c.results.value(*detector_tdi_) : *tdi_stages_;
+    // The ground moves v t during an integration of t; one line time t_line = GSD_along / v moves it one line, the
+    // pushbroom's own sampling. An integration longer than the line time smears the excess, (t / t_line − 1) pixels
+    // along track (Holst 2008 §10.3, linear motion MTF sinc(π d ν)), unless the file states the smear itself.
+    double smear_pixels = *smear_;
+    if (integration_time_ && ground_speed_) {
+      const double along = physics::gsd_along_track_m(h, roll, pitch, ifov, r);
+      const double line_time = physics::line_time_s(along, c.results.value(*ground_speed_));
+      const double ratio = c.results.value(*integration_time_) / line_time;
+      // (A shorter integration than the line time is exposure control, not an error: only a longer one smears.)
+      if (ratio > 1.01) {
+        if (!params_.given("smear_pixels")) smear_pixels = ratio - 1;
+        c.warn(params_.problem(params_.given("smear_pixels") ? "smear_pixels" : "niirs",
+                               fmt::format("the detector integrates {:.4g} line times (t = {:.4g} ms, line time {:.4g} ms "
+                                           "for the {:.4g} m along-track GSD at {:.4g} m/s): {}",
+                                           ratio, 1e3 * c.results.value(*integration_time_), 1e3 * line_time, along,
+                                           c.results.value(*ground_speed_),
+                                           params_.given("smear_pixels") ? "the smear stated here is used as given"
+                                                                         : fmt::format("{:.4g} pixels of smear counted", ratio - 1))));
+      }
+    }
+    const physics::MtfBudget budget{lambda,         n, eps, p, *jitter_, smear_pixels * p, *diffusion_, *wfe_, tdi_stages,
                                     *tdi_mismatch_, look.focal_length_m, params_.has("fried_parameter") ? *fried_ : 0.0};
     physics::MtfBudget across_budget = budget;  // smear and TDI synchronisation act along track only
     across_budget.smear_m = 0;
@@ -159,6 +190,13 @@ class Giqe final : public Stage {
     c.results.set(id_niirs_, niirs);
     c.results.set(id_required_, *required_);
     c.results.set(id_margin_, niirs / *required_ - 1.0);
+    // The rating scale runs from 0 to 9 (IRARS, Civil NIIRS Reference Guide, 1996): a prediction outside it lies far
+    // beyond the imagery the equation was fitted to (a camera at GEO gave −6.3).
+    if (niirs < 0 || niirs > 9)
+      c.warn(params_.problem("niirs", fmt::format("the predicted NIIRS {:.3g} lies outside the rating scale 0-9: the GIQE is "
+                                                  "extrapolated far beyond its fitted range (GSD {:.3g} m, RER {:.3g}, "
+                                                  "SNR {:.3g})",
+                                                  niirs, gsd_ground, rer, snr)));
     c.results.set(id_nyquist_, nyquist);
     const physics::MtfComponents at_nyquist = physics::mtf_components(budget, nyquist);
     c.results.set(id_mtf_system_, system(0.5));
@@ -179,6 +217,7 @@ class Giqe final : public Stage {
 
  private:
   const Params& params_;
+  std::optional<ResultId> detector_tdi_, integration_time_, ground_speed_;
   const double *required_, *wavelength_, *jitter_, *smear_, *diffusion_, *wfe_, *tdi_stages_, *tdi_mismatch_,
       *rer_, *snr_, *noise_gain_, *fried_;
   bool giqe4_;
@@ -203,5 +242,7 @@ RADCHAIN_PLUGIN(Giqe, {
     .needs = {vocabulary::platform_altitude, vocabulary::platform_tilt, if_present(vocabulary::platform_roll),
               if_present(vocabulary::platform_pitch), if_present(vocabulary::platform_earth_radius),
               vocabulary::optics_focal_length, vocabulary::optics_f_number, if_present(vocabulary::optics_obscuration),
-              if_present(vocabulary::detector_snr), if_present(vocabulary::detector_pixel_pitch)},
+              if_present(vocabulary::detector_snr), if_present(vocabulary::detector_pixel_pitch),
+              if_present(vocabulary::detector_tdi_stages), if_present(vocabulary::detector_integration_time),
+              if_present(vocabulary::platform_ground_speed)},
 })

@@ -9,6 +9,8 @@
 #include "radchain/look.hpp"
 #include "radchain/plugin.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -88,6 +90,12 @@ class GsdRequirement final : public Stage {
     // A pushbroom reads a line each time the ground moves one line spacing: the along-track GSD for square samples,
     // or the given sampling distance for an oversampling camera.
     const double spacing = params_.has("along_track_sampling") ? params_.get("along_track_sampling") : along;
+    // Lines farther apart than a pixel's footprint leave gaps along track: the image is undersampled there.
+    if (spacing > along * 1.01)
+      c.warn(params_.problem("along_track_sampling",
+                             fmt::format("lines {:.4g} m apart are coarser than the {:.4g} m along-track GSD: the ground "
+                                         "between them is not imaged",
+                                         spacing, along)));
     c.results.set(id_line_time_, physics::line_time_s(spacing, c.results.value(speed_)));
     if (has_swath_) {
       const double length = line_ ? c.results.value(*line_) : fov_given_ ? 2 * f * std::tan(*fov_ / 2) : *count_ * p;

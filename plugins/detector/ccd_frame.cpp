@@ -77,6 +77,8 @@ class CcdFrame final : public LaneStage<CcdFrame> {
     if (signal.form != RadiationForm::focal_power) c.refuse_form("a point image's power (a point target)", signal.form);
     const double lo = params_.get("band_min"), hi = params_.get("band_max");
     band_min_ = lo, band_max_ = hi;
+    require_band_inside_tables(params_, c.light, signal.spectrum, lo, hi);
+    require_band_inside_own_table(params_, "qe_curve", lo, hi);
     // Spectral phase: photons per second per unit signal scale, QE curve included (Pan eqs. 6-7).
     photon_rate_per_scale_ = physics::photon_rate(signal.spectrum, lo, hi,
                                                   params_.has("qe_curve") ? &params_.spectrum("qe_curve") : nullptr);
@@ -122,6 +124,9 @@ class CcdFrame final : public LaneStage<CcdFrame> {
     id_time_ = c.declare(vocabulary::detector_integration_time, "input t", "s");
     // What render and validate read (their frames use the detector's own well, ADC and noise).
     id_well_ = c.declare(vocabulary::detector_saturation_capacity, "input n_well", "e-");
+    id_peak_ = c.declare(vocabulary::detector_peak_pixel_electrons,
+                         "EE(1 pixel) S_image + dark rate × t + sky per pixel (all of the image when no PSF is known: Pan 2010)", "e-");
+    id_fill_ = c.declare(vocabulary::detector_peak_pixel_fill, "brightest pixel / n_well (> 1: saturated, EMVA 1288 §2.3)", "%");
     id_bits_ = c.declare(vocabulary::detector_adc_bits, "input N");
     id_dark_rate_ = c.declare(vocabulary::detector_dark_rate, "input dark current", "e-/s");
     id_read_pixel_ = c.declare(vocabulary::detector_read_noise_per_pixel, "input σ_o", "e-");
@@ -186,6 +191,13 @@ class CcdFrame final : public LaneStage<CcdFrame> {
     a.set(id_noise_, noise);
     a.set(id_snr_, signal / noise);
     a.set(id_time_, t);
+    // The brightest pixel's charge in one frame (a criterion may read it in a solve, so in every detail): the PSF's share in one centred pixel (all of it without a PSF).
+    V peak_fraction = broadcast<V>(1.0);
+    if constexpr (std::is_same_v<V, double>) peak_fraction = peak_pixel_fraction(a);
+    else for (int i = 0; i < lane_count; ++i) peak_fraction(i) = peak_pixel_fraction(a, i);
+    const V peak = peak_fraction * image + a.param(dark_) * t + sky_per_pixel;
+    a.set(id_peak_, peak);
+    a.set(id_fill_, peak / well);
     if (!a.full_detail()) return;  // the noise budget's terms: for the report
     a.set(id_image_, image);
     a.set(id_ensquared_, ensquared);
@@ -234,8 +246,33 @@ class CcdFrame final : public LaneStage<CcdFrame> {
     return 1.0;
   }
 
+  // The PSF's share in one pixel centred on it (a square of side `pitch`): 1 without a pixel pitch or a PSF.
+  template <class Access>
+  double peak_pixel_fraction(Access& a, int lane = 0) {
+    auto at = [&](const std::optional<ResultId>& id) {
+      if (!id) return 0.0;
+      if constexpr (std::is_same_v<Access, ScalarAccess>) return a.value(*id);
+      else return a.value(*id)(lane);
+    };
+    if (!pitch_entry_.present) return 1.0;
+    double pitch = 0;
+    if constexpr (std::is_same_v<Access, ScalarAccess>) pitch = a.param(pitch_);
+    else pitch = a.param(pitch_)(lane);
+    if (psf_wavelength_ && f_number_) {
+      const double lambda = at(psf_wavelength_), f_number = at(f_number_), eps = at(obscuration_);
+      if (pitch != peak_cache_[0] || lambda != peak_cache_[1] || f_number != peak_cache_[2] || eps != peak_cache_[3]) {
+        peak_cache_[0] = pitch, peak_cache_[1] = lambda, peak_cache_[2] = f_number, peak_cache_[3] = eps;
+        cached_peak_fraction_ = physics::airy_ensquared_energy(pitch, lambda, f_number, eps);
+      }
+      return cached_peak_fraction_;
+    }
+    if (gaussian_fwhm_) return physics::gaussian_ensquared_energy(pitch, at(gaussian_fwhm_));
+    return 1.0;
+  }
+
   const Params& params_;
   const double *qe_, *time_, *well_, *bits_, *dark_, *read_, *pitch_, *window_, *ensquared_, *sky_;
+  double peak_cache_[4] = {-1, -1, -1, -1}, cached_peak_fraction_ = 1;
   const Params::Entry &pitch_entry_, &ensquared_entry_, &sky_entry_;
   bool paper_quantisation_;
   double photon_rate_per_scale_ = 0, band_min_ = 0, band_max_ = 0;
@@ -244,7 +281,7 @@ class CcdFrame final : public LaneStage<CcdFrame> {
       optics_transmittance_, sun_magnitude_, id_pixel_angle_, id_sky_pixel_, id_pitch_;
   ResultId id_signal_{}, id_image_{}, id_ensquared_{}, id_pixels_{}, id_dark_{}, id_dark_noise_{}, id_read_noise_{},
       id_quant_noise_{}, id_background_{}, id_background_noise_{}, id_shot_noise_{}, id_noise_{}, id_snr_{}, id_time_{},
-      id_well_{}, id_bits_{}, id_dark_rate_{}, id_read_pixel_{}, id_band_min_{}, id_band_max_{};
+      id_well_{}, id_peak_{}, id_fill_{}, id_bits_{}, id_dark_rate_{}, id_read_pixel_{}, id_band_min_{}, id_band_max_{};
 };
 
 }  // namespace
@@ -259,7 +296,8 @@ RADCHAIN_PLUGIN(CcdFrame, {
                   vocabulary::detector_integration_time, vocabulary::detector_sky_electrons_per_pixel,
                   vocabulary::detector_saturation_capacity, vocabulary::detector_adc_bits, vocabulary::detector_dark_rate,
                   vocabulary::detector_read_noise_per_pixel, vocabulary::detector_band_min, vocabulary::detector_band_max,
-                  vocabulary::detector_pixel_pitch},
+                  vocabulary::detector_pixel_pitch, vocabulary::detector_peak_pixel_fill,
+                  vocabulary::detector_peak_pixel_electrons},
     .needs = {if_present(vocabulary::optics_psf_wavelength), if_present(vocabulary::optics_gaussian_fwhm),
               if_present(vocabulary::optics_f_number), if_present(vocabulary::optics_obscuration),
               if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_collecting_area),

@@ -76,6 +76,7 @@ class CcdLine final : public Stage {
     if (signal.form != RadiationForm::focal_irradiance)
       c.refuse_form("a focal-plane irradiance (an extended scene through optics with a focal length)", signal.form);
     const double lo = params_.get("band_min"), hi = params_.get("band_max");
+    require_band_inside_tables(params_, c.light, signal.spectrum, lo, hi);
     signal_in_band_ = signal.spectrum.integral(lo, hi);
     background_in_band_ =
         c.light.background.form == RadiationForm::focal_irradiance ? c.light.background.spectrum.integral(lo, hi) : 0.0;

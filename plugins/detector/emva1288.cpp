@@ -10,7 +10,8 @@
 //   noise over M co-added exposures: n² = M (S₁ + n_pix v_t) + M² (n_pix v_s + s_g² S₁²/n_eff)
 //     temporal noise adds in variance over M frames; the fixed patterns (DSNU, PRNU s_g) repeat in every frame
 //     of the same pixels and add in amplitude (EMVA 1288 §2.4: spatial non-uniformity does not average out).
-//     PRNU on the point image: Σ_i (s_g S f_i)² = s_g² S² Σ f_i² = s_g² S²/n_eff (n_eff = 1/Σ f_i²).
+//     PRNU on the point image: Σ_i (s_g S f_i)² = s_g² S² Σ f_i² = s_g² S²/n_eff (n_eff = 1/Σ f_i²), and under TDI
+//     s_g² S²/(n_eff N_tdi): each stage is another pixel row with gains of its own (physics/emva1288.hpp).
 //   n_pix = n² (window), π R²/(b p)² (circle of radius R on the focal plane: the aperture's area in pixels, as
 //   aperture photometry counts its sky and read noise; Howell, Handbook of CCD Astronomy 2nd ed. (2006) eq. 4.4),
 //   or n_eff (psf: King 1983; LSST SMTN-002; physics/emva1288.hpp)
@@ -65,12 +66,15 @@
 #include "radchain/physics/psf.hpp"
 #include "radchain/physics/streak.hpp"
 #include "radchain/curve_components.hpp"
+#include "radchain/look.hpp"
+#include "radchain/physics/earth_geometry.hpp"
 #include "radchain/plugin.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
 #include <numbers>
 
@@ -86,8 +90,10 @@ const Schema& schema() {
                      "each component's mean over the band is a result"),
       quantity("band_min", "m", "0.4 um").needed().above(0).affects_spectrum().described("detector band lower limit"),
       quantity("band_max", "m", "0.9 um").needed().above(0).affects_spectrum().described("detector band upper limit"),
-      quantity("integration_time", "s", "10 ms").needed().above(0)
-          .described("exposure time t of one frame (of one TDI stage for tdi_stages > 1)"),
+      quantity("integration_time", "s", "10 ms").fallback("0 s").at_least(0)
+          .described("exposure time t of one frame (of one TDI stage for tdi_stages > 1); 0 or absent for a scene seen "
+                     "from an orbiting platform: the line time GSD_along / ground speed, a pushbroom's one line per "
+                     "ground line"),
       quantity("gain", "electron-1", "0.25 DN/e-").needed().above(0).described("system gain K in DN/e- (EMVA eq. 3)"),
       quantity("dark_noise", "electron", "2.3 e-").needed().at_least(0)
           .described("temporal dark noise σ_d0 (EMVA §4.2: at zero exposure time, read noise included)"),
@@ -131,12 +137,6 @@ const Schema& schema() {
           .described("extended scenes: L_ref as the reflectance of the target's scene (its sun angle, atmosphere)"),
   };
   return s;
-}
-
-std::string nm_range(const Spectrum& s) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.1f-%.1f nm", s.min_wavelength_m() * 1e9, s.max_wavelength_m() * 1e9);
-  return text;
 }
 
 class Emva1288 final : public Stage {
@@ -188,19 +188,19 @@ class Emva1288 final : public Stage {
     }
     const double lo = params_.get("band_min"), hi = params_.get("band_max");
     const Spectrum* qe_curve = params_.has("qe_curve") ? &params_.spectrum("qe_curve") : nullptr;
-    if (qe_curve && (lo < qe_curve->min_wavelength_m() || hi > qe_curve->max_wavelength_m()))
-      params_.reject(lo < qe_curve->min_wavelength_m() ? "band_min" : "band_max",
-                     "the band reaches outside the qe_curve's table (" + nm_range(*qe_curve) + "): it would count 0 there");
+    require_band_inside_own_table(params_, "qe_curve", lo, hi);
+    require_band_inside_tables(params_, c.light, c.light.signal.spectrum, lo, hi);
     qe_components_ = declare_component_means(c, params_, "qe_curve", lo, hi);  // curve_components.hpp
     if (extended_) {
       prepare_extended(c, lo, hi, qe_curve);
       return;
     }
+    if (!(*time_ > 0)) params_.reject("integration_time", "a point image needs the exposure of one frame, e.g. \"10 ms\"");
     // EMVA eq. 1 in spectral form: photoelectrons per second per unit signal scale.
     photon_rate_per_scale_ = physics::photon_rate(signal.spectrum, lo, hi, qe_curve);
     // AB magnitude 0 (flat f_ν of m_AB = −2.5 lg f_ν − 48.60, 3630.78 Jy: magnitudes.hpp, as the sky and the targets
     // use it) through this detector: n_λ = f_ν/(hλ), electrons s-1 m-2 (times qe).
-    ab_electrons_per_m2_s_ = physics::photon_rate(physics::ab_reference_spectrum(lo, hi), lo, hi, qe_curve);
+    ab_electrons_per_m2_s_ = physics::photon_rate(physics::flat_f_nu_sed(), lo, hi, qe_curve);
 
     psf_wavelength_ = c.find(vocabulary::optics_psf_wavelength);
     gaussian_fwhm_ = c.find(vocabulary::optics_gaussian_fwhm);
@@ -269,7 +269,7 @@ class Emva1288 final : public Stage {
     id_read_noise_ = c.declare("read_noise", "electron", "√(n_pix b² σ_d0²) per frame", "e-");
     id_background_ = c.declare("background_electrons", "electron", "n_pix × B per frame", "e-");
     id_shot_noise_ = c.declare("shot_noise", "electron", "√S over M frames", "e-");
-    id_prnu_noise_ = c.declare("prnu_noise", "electron", "M s_g S₁/√n_eff", "e-");
+    id_prnu_noise_ = c.declare("prnu_noise", "electron", "M s_g S₁/√(n_eff N_tdi)", "e-");
     id_ab_zero_ = c.declare("ab_zero_point_electron_rate", "m-2 s-1",
                             "electrons s-1 m-2 of AB magnitude 0 through the band and QE (before optics)", "cm-2 s-1");
     // What `radchain render` draws a frame with (docs/rendering.md): the pixel as read out, its read noise and dark.
@@ -311,6 +311,13 @@ class Emva1288 final : public Stage {
       if (airy) optics = physics::diffraction_fwhm_rad(a.value(*psf_wavelength_), 1.0) * a.value(*f_number_);
       const double seeing = seeing_ ? a.value(*seeing_) * f : 0.0;
       fwhm = std::hypot(std::hypot(seeing, optics), jitter_fwhm);
+      // Seeing finer than the diffraction core is no atmosphere a site measures: most likely a delivered image
+      // size that already includes the telescope, to which diffraction is added a second time here.
+      if (seeing_ && airy && seeing < optics)
+        c.warn(InputError({}, params_.context(), "atmosphere.seeing_fwhm",
+                          fmt::format("the seeing {:.3g}\" is finer than the diffraction core {:.3g}\" (1.028 λ/D at "
+                                      "{:.4g} nm): is it a delivered image size that already includes the optics?",
+                                      seeing / f * 206264.806, optics / f * 206264.806, 1e9 * a.value(*psf_wavelength_))));
     }
     double neff = 1.0, peak_fraction = 1.0, ensquared = 1.0;
     const double n = *window_;
@@ -355,7 +362,17 @@ class Emva1288 final : public Stage {
     const double circle_pixels = std::numbers::pi * radius_m * radius_m / (binned * binned);
     const double pixels = psf_photometry_ ? neff : circle_photometry_ ? circle_pixels : n * n;
     const double temporal = m * (signal1 + pixels * (sky_binned + dark_binned + read_var_binned));
-    const double prnu_amp = m * *prnu_ * signal1 / std::sqrt(neff);
+    // The point image's N_tdi stages are N_tdi different pixel rows: their gains average as for binning.
+    // PRNU is a property of each native pixel: a binned pixel sums b² of them, each with a gain of its own, so the
+    // PSF-weighted sum runs over native pixels, s_g² S²/n_eff,native (the same point image's n_eff at the native pitch;
+    // a streak keeps its ratio to the still image's). 1 × 1 binning: the n_eff above.
+    double prnu_neff = neff;
+    if (b > 1 && *prnu_ > 0 && (fwhm > 0 || airy)) {
+      const double native = fwhm > 0 ? physics::gaussian_noise_equivalent_area_px(fwhm / pitch)
+                                     : native_airy_neff_.of(pitch, a.value(*psf_wavelength_), a.value(*f_number_), opt(obscuration_));
+      prnu_neff = native * neff / static_neff;
+    }
+    const double prnu_amp = m * *prnu_ * signal1 / std::sqrt(prnu_neff * tdi);
     const double spatial = m * m * pixels * b * b * *dsnu_ * *dsnu_ + prnu_amp * prnu_amp;
     const double noise = std::sqrt(temporal + spatial);
     const double signal = m * signal1;
@@ -440,9 +457,22 @@ class Emva1288 final : public Stage {
     id_signal_ = c.declare(vocabulary::detector_signal_electrons,
                            "M b² N_tdi t p² ∫ E'_λ η λ/(hc) dλ: the scene in one (binned) pixel (EMVA §2.1, eq. 1)", "e-");
     id_noise_ = c.declare(vocabulary::detector_noise_electrons,
-                          "√(M (S₁ + b² v_t) + M² (b² σ_o² + s_g² S₁²/b²)) (EMVA 1288 eqs. 5, 6, 18)", "e-");
+                          "√(M (S₁ + b² v_t) + M² (b² σ_o² + s_g² S₁²/(b² N_tdi))) (EMVA 1288 eqs. 5, 6, 18)", "e-");
     id_snr_ = c.declare(vocabulary::detector_snr, "M S₁ / noise: the scene's pixel (EMVA 1288 eq. 6)");
-    id_time_ = c.declare(vocabulary::detector_integration_time, "input t (line or frame time of one TDI stage)", "s");
+    // Stated once: without an integration time of its own, a pushbroom integrates for its line time, the time the
+    // ground takes to move one along-track GSD (physics/earth_geometry.hpp, line_time_s) at the platform's look.
+    line_time_ = !(*time_ > 0);
+    if (line_time_) {
+      ground_speed_ = c.find(vocabulary::platform_ground_speed);
+      if (!ground_speed_)
+        params_.reject("integration_time", "no integration time: give one, or an orbiting platform (plugin "
+                                           "\"earth_orbit\") whose ground speed sets the line time");
+      look_.find(c, params_, "integration_time", true);
+    }
+    id_time_ = c.declare(vocabulary::detector_integration_time,
+                         line_time_ ? "t = GSD_along / ground speed: the line time (no integration_time given)"
+                                    : "input t (line or frame time of one TDI stage)",
+                         "s");
     id_fill_ = c.declare(vocabulary::detector_peak_pixel_fill, "scene pixel (μ_e + N_tdi μ_I t) / min(μ_e.sat, (2^bits−1)/K)",
                          "%");
     id_peak_ = c.declare(vocabulary::detector_peak_pixel_electrons, "μ_e + N_tdi μ_I t of one native pixel, one exposure",
@@ -486,14 +516,18 @@ class Emva1288 final : public Stage {
     id_dark_ = c.declare("dark_electrons", "electron", "b² N_tdi μ_I t per frame", "e-");
     id_read_noise_ = c.declare("read_noise", "electron", "√(b² σ_d0²) per frame", "e-");
     id_shot_noise_ = c.declare("shot_noise", "electron", "√S over M frames", "e-");
-    id_prnu_noise_ = c.declare("prnu_noise", "electron", "M s_g S₁ / b", "e-");
+    id_prnu_noise_ = c.declare("prnu_noise", "electron", "M s_g S₁ / (b √N_tdi)", "e-");
     id_reference_noise_ = c.declare("reference_noise_electrons", "electron", "noise at L_ref", "e-");
     id_dynamic_range_ = c.declare("dynamic_range", "1", "L_sat / NEΔL(L→0): saturation over the dark noise floor");
   }
 
   void evaluate_extended(Context& c) {
     ScalarAccess a(c);
-    const double t = *time_, qe = *qe_, gain = *gain_, pitch = *pitch_;
+    // (A sweep may set a time where the file gave none: a positive value is used as given.)
+    if (!(*time_ > 0) && !line_time_)
+      params_.reject("integration_time", "0 s: no platform here sets the line time; give the integration time");
+    const double t = *time_ > 0 ? *time_ : line_time(c.results);
+    const double qe = *qe_, gain = *gain_, pitch = *pitch_;
     const double b = *binning_, m = *exposures_, tdi = *tdi_;
     const double omega = physics::pixel_projected_solid_angle_sr(a.value(*f_number_),
                                                                  obscuration_ ? a.value(*obscuration_) : 0.0);
@@ -514,7 +548,7 @@ class Emva1288 final : public Stage {
     const double quant_var = physics::emva_quantisation_variance_e2(gain);
     const double floor_native = *dark_noise_ * *dark_noise_ + quant_var + *other_ * *other_ + dark_native;
     auto noise_of = [&](double signal1) {
-      return std::sqrt(physics::emva_uniform_scene_variance_e2(signal1, floor_native, *dsnu_, *prnu_, b, m));
+      return std::sqrt(physics::emva_uniform_scene_variance_e2(signal1, floor_native, *dsnu_, *prnu_, b, m, tdi));
     };
     const double signal1 = b * b * scene_native, reference1 = b * b * k * reference;
     const double noise = noise_of(signal1), reference_noise = noise_of(reference1);
@@ -558,24 +592,41 @@ class Emva1288 final : public Stage {
     a.set(id_dark_, b * b * dark_native);
     a.set(id_read_noise_, b * *dark_noise_);
     a.set(id_shot_noise_, std::sqrt(m * signal1));
-    a.set(id_prnu_noise_, m * *prnu_ * signal1 / b);
+    a.set(id_prnu_noise_, m * *prnu_ * signal1 / (b * std::sqrt(tdi)));
     a.set(id_reference_noise_, reference_noise);
     a.set(id_dynamic_range_, saturation_radiance * m * b * b * k / noise_of(0.0));
   }
 
+  // The along-track GSD over the ground speed at the platform's look (spherical Earth), the native pixel's.
+  double line_time(const Results& results) const {
+    const Look look = look_.read(results);
+    const double along = physics::gsd_along_track_m(look.altitude_m, look.roll_rad, look.pitch_rad,
+                                                    look.pixel_pitch_m / look.focal_length_m, look.earth_radius_m);
+    return physics::line_time_s(along, results.value(*ground_speed_));
+  }
+
   const Params& params_;
+  bool line_time_ = false;
+  LookTerms look_;
+  std::optional<ResultId> ground_speed_;
   // n_eff of the pixel-sampled Airy pattern (King 1983; physics::airy_noise_equivalent_area_px), remembered for the
   // last sampling: it depends on nothing else, and its pixel sum at a coarse pitch takes milliseconds.
-  double airy_noise_equivalent_area(double pitch_m, double wavelength_m, double f_number, double obscuration) {
-    const std::array<double, 4> key{pitch_m, wavelength_m, f_number, obscuration};
-    if (key != airy_neff_key_) {
-      airy_neff_ = physics::airy_noise_equivalent_area_px(pitch_m, wavelength_m, f_number, obscuration);
-      airy_neff_key_ = key;  // (after: a throw leaves no stale value under this key)
+  struct AiryNeff {
+    double of(double pitch_m, double wavelength_m, double f_number, double obscuration) {
+      const std::array<double, 4> key{pitch_m, wavelength_m, f_number, obscuration};
+      if (key != key_) {
+        value_ = physics::airy_noise_equivalent_area_px(pitch_m, wavelength_m, f_number, obscuration);
+        key_ = key;  // (after: a throw leaves no stale value under this key)
+      }
+      return value_;
     }
-    return airy_neff_;
+    std::array<double, 4> key_{};
+    double value_ = 0.0;
+  };
+  double airy_noise_equivalent_area(double pitch_m, double wavelength_m, double f_number, double obscuration) {
+    return airy_neff_.of(pitch_m, wavelength_m, f_number, obscuration);
   }
-  std::array<double, 4> airy_neff_key_{};
-  double airy_neff_ = 0.0;
+  AiryNeff airy_neff_, native_airy_neff_;  // at the binned pitch (photometry) and the native one (PRNU)
 
   const double *qe_, *time_, *gain_, *dark_noise_, *saturation_, *dark_current_, *prnu_, *dsnu_, *other_, *bits_,
       *binning_, *exposures_, *tdi_, *pitch_, *window_, *ensquared_;
@@ -633,5 +684,8 @@ RADCHAIN_PLUGIN(Emva1288, {
               if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_aperture),
               if_present(vocabulary::optics_collecting_area), if_present(vocabulary::optics_transmittance),
               if_present(vocabulary::atmosphere_seeing_fwhm), if_present(vocabulary::atmosphere_sky_brightness),
-              if_present(vocabulary::target_band_magnitude), if_present(vocabulary::target_reflectance)},
+              if_present(vocabulary::target_band_magnitude), if_present(vocabulary::target_reflectance),
+              if_present(vocabulary::platform_altitude), if_present(vocabulary::platform_tilt),
+              if_present(vocabulary::platform_roll), if_present(vocabulary::platform_pitch),
+              if_present(vocabulary::platform_earth_radius), if_present(vocabulary::platform_ground_speed)},
 })

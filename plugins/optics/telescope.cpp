@@ -61,6 +61,7 @@ class Telescope final : public LaneStage<Telescope> {
     Radiation& signal = c.light.signal;
     if (params_.has("transmittance_curve") && signal.form != RadiationForm::none)
       signal.spectrum = signal.spectrum.product(params_.spectrum("transmittance_curve"), signal.spectrum.unit());
+    note_table(c.light, params_, "transmittance_curve");
     if (signal.form == RadiationForm::pupil_irradiance) {
       signal.form = RadiationForm::focal_power;
     } else if (signal.form == RadiationForm::scene_radiance) {

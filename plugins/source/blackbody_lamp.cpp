@@ -72,6 +72,7 @@ class BlackbodyLamp final : public Stage {
     // ∫ E_λ dλ = 1 W m^-2 on the grid, so that `scale` is the total irradiance in W m^-2.
     const Spectrum planck = physics::blackbody_exitance_spectrum(temperature_K_, c2_m_K_);
     c.light.illumination = planck.scaled(1.0 / planck.integral());
+    note_table(c.light, planck, "Planck curve of " + params_.context() + " (its sampled grid)");
     illuminance_per_W_m2_ = physics::luminous(c.light.illumination, params_.spectrum("v_lambda"));
 
     id_temperature_ = c.declare("temperature", "K", "input T (or the convention's nominal temperature)", "K");

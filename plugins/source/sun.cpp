@@ -91,6 +91,8 @@ class Sun final : public Stage {
       illuminance_ = physics::luminous(spectrum, v);  // the pinned value, up to rounding
     }
     c.light.illumination = spectrum;
+    if (planck_) note_table(c.light, spectrum, "model = \"planck\" of " + params_.context() + " (its sampled grid)");
+    else note_table(c.light, params_, "table");
     total_ = spectrum.integral();
     id_total_ = c.declare("total_irradiance", "W m-2", "∫ E_λ dλ over the spectrum (solar constant at 1 AU)", "W m-2");
     id_illuminance_ = c.declare(vocabulary::source_illuminance,

@@ -41,6 +41,7 @@ class Tabulated final : public Stage {
     Spectrum spectrum = params_.spectrum("table");
     if (params_.has("total_irradiance")) spectrum = spectrum.scaled(params_.get("total_irradiance") / spectrum.integral());
     c.light.illumination = spectrum;
+    note_table(c.light, params_, "table");
     total_ = spectrum.integral();
     illuminance_ = physics::luminous(spectrum, params_.spectrum("v_lambda"));
     id_total_ = c.declare("total_irradiance", "W m-2", "∫ E_λ dλ over the table", "W m-2");

@@ -12,7 +12,6 @@
 #include "radchain/plugin.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 namespace {
 using namespace radchain;
@@ -54,30 +53,29 @@ class PointSource final : public LaneStage<PointSource> {
     if (own_sed && params_.given("sed_shape")) params_.reject("sed_shape", "give sed (a table) or sed_shape, not both");
     if (!own_sed && shape == "source" && c.light.illumination.empty())
       c.refuse_form("a source spectrum (or give sed)", RadiationForm::none);
-    const Spectrum flat = shape == "flat_f_nu" ? physics::ab_reference_spectrum(lo, hi) : physics::st_reference_spectrum(lo, hi);
+    // A flat SED spans every band the chain may integrate, not only the normalising band's table: the source is
+    // the same whatever band its magnitude is quoted in.
+    const Spectrum& flat = shape == "flat_f_nu" ? physics::flat_f_nu_sed() : physics::flat_f_lambda_sed();
     const Spectrum& sed = own_sed ? params_.spectrum("sed") : shape == "source" ? c.light.illumination : flat;
     auto covers = [&](const Spectrum& s) { return s.min_wavelength_m() <= lo && s.max_wavelength_m() >= hi; };
-    auto range = [](const Spectrum& s) {
-      char text[64];
-      std::snprintf(text, sizeof text, "%.1f-%.1f nm", s.min_wavelength_m() * 1e9, s.max_wavelength_m() * 1e9);
-      return std::string(text);
-    };
     if (!covers(sed))
-      params_.reject(own_sed ? "sed" : "band", "the band (" + range(band) + ") reaches outside the SED's table (" +
-                                                   range(sed) + "): its magnitude there would be counted as 0");
+      params_.reject(own_sed ? "sed" : "band", "the band (" + nm_range(band) + ") reaches outside the SED's table (" +
+                                                   nm_range(sed) + "): its magnitude there would be counted as 0");
     const std::string& system = params_.text("system");
     if (system == "vega") {
       const Spectrum& vega = params_.spectrum("vega_spectrum");
-      if (!covers(vega)) params_.reject("vega_spectrum", "does not cover the band (" + range(band) + ")");
+      if (!covers(vega)) params_.reject("vega_spectrum", "does not cover the band (" + nm_range(band) + ")");
       zero_point_ = physics::band_photon_rate(vega, band) * std::pow(10.0, 0.4 * params_.get("reference_magnitude"));
-    } else if (system == "ab") {
-      zero_point_ = physics::band_photon_rate(physics::ab_reference_spectrum(lo, hi), band);
+    } else if (system == "ab") {  // the reference spectra are the flat SEDs themselves: a flat SED in its own system
+      zero_point_ = physics::band_photon_rate(physics::flat_f_nu_sed(), band);  // is scaled by exactly 1
     } else {
-      zero_point_ = physics::band_photon_rate(physics::st_reference_spectrum(lo, hi), band);
+      zero_point_ = physics::band_photon_rate(physics::flat_f_lambda_sed(), band);
     }
     const double sed_rate = physics::band_photon_rate(sed, band);
     if (!(sed_rate > 0)) params_.reject(own_sed ? "sed" : "band", "the SED gives no photons in the band");
     // The signal per unit scale: the SED normalised to N₀ photons s⁻¹ m⁻² in the band (magnitude 0).
+    if (own_sed) note_table(c.light, params_, "sed");
+    else if (shape != "source") note_table(c.light, sed, "sed_shape = \"" + shape + "\" of " + params_.context());
     c.light.signal.form = RadiationForm::pupil_irradiance;
     c.light.signal.spectrum = sed.scaled(zero_point_ / sed_rate, "W m-2 m-1");
     if (!c.light.up_path_transmittance.empty())  // seen through an atmosphere

@@ -212,11 +212,12 @@ TEST(Budget, KolobrodovFocalLengthAndAperture) {
   }
 }
 
-// A solve that fails at a perturbed point is reported with the reason, never a zero: a bracket that ends just
-// above the root fails as soon as the aperture grows.
+// A solve that fails at a perturbed point is reported with the reason, never a zero: a bracket that ends 1e-6 mag
+// above the root (15.5565045) fails as soon as the aperture grows, even by the smallest first step budget tries
+// (1e-3 of 2 %: 4e-5 mag).
 TEST(Budget, FailedSolveIsReported) {
   Scratch scratch;
-  write_text(scratch / "tight.toml", sbv_with("bracket = [5, 25]", "bracket = [5, 15.5566]"));
+  write_text(scratch / "tight.toml", sbv_with("bracket = [5, 25]", "bracket = [5, 15.556505]"));
   Chain chain = load_sensor((scratch / "tight.toml").string());
   chain.solver = SolverChoice::root;
   BudgetOptions options;

@@ -104,6 +104,16 @@ const Case cases[] = {
     {"view_airmass_outside_lut"},
     {"sun_below_horizon"},
     {"dated_scene_without_day"},
+    {"csv_negative_value"},
+    {"csv_transmittance_above_one"},
+    {"csv_hex_number"},
+    {"band_past_transmittance_curve"},
+    {"band_past_atmosphere_table"},
+    {"criterion_informational_not_bool"},
+    {"pixel_pitch_stated_twice"},
+    {"tdi_stages_stated_twice"},
+    {"giqe_wavelength_outside_band"},
+    {"sun_zenith_on_target_with_airmass_lut"},
 };
 
 // How a case reads in test names and ctest listings (instead of a byte dump).

@@ -189,7 +189,7 @@ TEST(RenderEarthDatasheet, FlatFieldHasTheChainsSnr) {
 TEST(RenderEarthDatasheet, TheMtfBudgetIsTheGiqeCriterionsCascade) {
   // Jitter, smear, diffusion, wavefront error and TDI, so every term of the budget is in play.
   auto k = load(s2, {{"criteria.iq.jitter_rms", "0.8 um"}, {"criteria.iq.smear_pixels", "0.4"}, {"criteria.iq.diffusion_rms", "1 um"},
-                     {"criteria.iq.wavefront_error", "0.05"}, {"criteria.iq.tdi_stages", "8"}, {"criteria.iq.tdi_mismatch", "0.05"},
+                     {"criteria.iq.wavefront_error", "0.05"}, {"detector.tdi_stages", "8"}, {"criteria.iq.tdi_mismatch", "0.05"},
                      {"criteria.iq.fried_parameter", "\"20 cm\""}});
   const EarthSceneSetup s = earth_scene_setup(k.chain, k.report, options(2.0));
   ASSERT_EQ(s.optics, OpticsMtf::budget);

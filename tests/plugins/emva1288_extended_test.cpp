@@ -227,7 +227,7 @@ TEST(Emva1288Extended, BadInputIsRefusedWithTheKeyNamed) {
   // The band beyond the QE table: never counted as 0.
   const std::string band = message("band", "qe_curve = \"cmos_sony_imx428_mono_qe.csv\"\nband_max = \"1.2 um\"");
   EXPECT_NE(band.find("band_max"), std::string::npos) << band;
-  EXPECT_NE(band.find("outside the qe_curve"), std::string::npos) << band;
+  EXPECT_NE(band.find("reaches past the table qe_curve"), std::string::npos) << band;
   // Both forms of the reference at once.
   EXPECT_NE(message("both", "reference_radiance = \"100 W m-2 sr-1 um-1\"\nreference_reflectance = 0.3").find("not both"),
             std::string::npos);

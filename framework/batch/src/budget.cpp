@@ -3,6 +3,7 @@
 #include "radchain/batch/budget.hpp"
 
 #include "radchain/error.hpp"
+#include "radchain/units.hpp"
 
 #include <fmt/format.h>
 
@@ -106,7 +107,23 @@ struct Derivatives {
   std::string failure;
 };
 
-Derivatives ridders(Chain& chain, Evaluator& evaluate, const Input& in, double h0, DifferenceKind kind,
+// The scale of a parameter at 0 (a jitter, a diffusion spread, a stray light left out): the schema's example value
+// ("1 um" for a diffusion rms), the size a user writes; else the range's width, else 1 SI unit. One SI unit of
+// a diffusion rms is a metre, where no design converges.
+double example_scale(const ParamSpec& spec) {
+  try {
+    std::string text = spec.example;
+    if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = text.substr(1, text.size() - 2);
+    const units::ParsedQuantity q = units::split_quantity(text);
+    const double factor = q.unit.empty() ? 1.0 : units::conversion(q.unit, spec.si_unit).factor;
+    if (const double value = std::abs(q.number * factor); value > 0 && std::isfinite(value)) return value;
+  } catch (const std::exception&) {
+    // not a quantity (a choice, a list): fall through
+  }
+  return std::isfinite(spec.max - spec.min) ? spec.max - spec.min : 1.0;
+}
+
+Derivatives ridders(Chain& chain, Evaluator& evaluate, const Input& in, double& h0, DifferenceKind kind,
                     const std::vector<double>& f0) {
   constexpr double con = 1.4, safe = 2.0;
   constexpr std::size_t ntab = 10;
@@ -149,11 +166,21 @@ Derivatives ridders(Chain& chain, Evaluator& evaluate, const Input& in, double h
   };
 
   std::vector<double> q;
-  double h = h0;
-  if (!quotient(h, q)) {
+  // The first step is a guess from the value's scale (or its range, for a value at 0: a jitter of 0 stepped by a
+  // tenth of its range was 412″, where no m5 exists). Where the chain cannot be evaluated that far away, a step ten
+  // times smaller is tried, down to 1e-3 of the first: a derivative is local, but a chain that fails that close to
+  // its nominal point is reported, not differentiated.
+  bool first = quotient(h0, q);
+  for (int shrink = 0; !first && shrink < 3; ++shrink) {
+    h0 /= 10;
+    first = quotient(h0, q);
+  }
+  if (!first) {
     d.ok = false;
     return d;
   }
+  d.failure.clear();
+  double h = h0;
   for (std::size_t k = 0; k < nr; ++k) a[k][0][0] = q[k], d.value[k] = q[k];
   for (std::size_t i = 1; i < ntab; ++i) {
     h /= con;
@@ -290,7 +317,7 @@ Budget compute_budget(Chain& chain, const BudgetOptions& options) {
   for (const Input& in : inputs) {
     const ParamSpec& spec = *in.spec;
     double scale = std::abs(in.x0);
-    if (scale == 0) scale = std::isfinite(spec.max - spec.min) ? spec.max - spec.min : 1.0;
+    if (scale == 0) scale = example_scale(spec);
     double h0 = options.initial_step * scale;
     DifferenceKind kind = DifferenceKind::central;
     bool placed = false;

@@ -23,7 +23,9 @@ namespace {
 
 enum Column { sensor, result, computed, reference, unit, delta, delta_pct, check, note, column_count };
 
-std::string value6(double v) { return std::isnan(v) ? "nan" : fmt::format("{:.6g}", v); }
+// A value to the last bit (the shortest text that reads back as the same double); text tables show 6 digits
+// (catalogue_layout's text_digits).
+std::string full_precision(double v) { return std::isnan(v) ? "nan" : fmt::format("{}", v); }
 
 std::string unit_cell(const std::string& unit) { return unit == "1" ? std::string() : unit; }
 
@@ -40,19 +42,21 @@ class CatalogueSummary final : public TableSummary {
     if (c == "ok" || c == "FAIL") ++checks_;
     if (c == "FAIL") ++failed_;
     if (c == "ERROR") ++errors_;
+    if (c == "warning") ++warnings_;
   }
   std::string text(std::size_t points) const override {
     std::string text = fmt::format("{} sensor file{}, {} check{}: ", points, points == 1 ? "" : "s", checks_,
                                    checks_ == 1 ? "" : "s");
-    if (failed_ == 0 && errors_ == 0) return text + "all passed";
+    const std::string warned = warnings_ ? fmt::format(" ({} warning{})", warnings_, warnings_ == 1 ? "" : "s") : "";
+    if (failed_ == 0 && errors_ == 0) return text + "all passed" + warned;
     std::vector<std::string> parts;
     if (failed_) parts.push_back(fmt::format("{} FAILED", failed_));
     if (errors_) parts.push_back(fmt::format("{} file{} with bad input", errors_, errors_ == 1 ? "" : "s"));
-    return text + join(parts);
+    return text + join(parts) + warned;
   }
 
  private:
-  std::size_t checks_ = 0, failed_ = 0, errors_ = 0;
+  std::size_t checks_ = 0, failed_ = 0, errors_ = 0, warnings_ = 0;
 };
 
 }  // namespace
@@ -82,7 +86,8 @@ std::vector<std::string> catalogue_files(const std::vector<std::string>& inputs)
 TableLayout catalogue_layout() {
   return TableLayout{"catalogue",
                      {"sensor", "result", "computed", "reference", "unit", "delta", "delta_pct", "check", "note"},
-                     {false, false, true, true, false, true, true, false, false}};
+                     {false, false, true, true, false, true, true, false, false},
+                     {0, 0, 6, 6, 0, 0, 0, 0, 0}};
 }
 
 std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, const Report& report,
@@ -111,7 +116,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
       }
     }
     const double ref = e.spec.value_si * factor;
-    row[reference] = value6(ref);
+    row[reference] = full_precision(ref);
     row[unit] = unit_cell(shown_unit);
     row[check] = e.passed ? "ok" : "FAIL";
     row[note] = e.spec.source;
@@ -122,7 +127,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
       row[note] = "not computed by this sensor";
     } else {
       const double c = e.computed_si * factor;
-      row[computed] = value6(c);
+      row[computed] = full_precision(c);
       row[delta] = fmt::format("{:+.4g}", c - ref);
       if (ref != 0) row[delta_pct] = fmt::format("{:+.3g}", 100.0 * (c - ref) / std::abs(ref));
     }
@@ -137,7 +142,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
     row[result] = s.spec.unknown;
     if (const auto it = index.find(s.spec.unknown); it != index.end() && s.converged) {
       const ResultInfo& info = report.results[it->second];
-      row[computed] = value6(s.value_si * info.display_factor);
+      row[computed] = full_precision(s.value_si * info.display_factor);
       row[unit] = unit_cell(info.display_unit);
     }
     row[check] = s.converged ? "ok" : "FAIL";
@@ -146,12 +151,30 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
     rows.push_back(std::move(row));
   }
 
+  // Criteria that do not hold (a saturated pixel, a NIIRS below its requirement): a failed check unless the file
+  // marks the criterion informational; and the run's warnings, one row each.
+  for (const auto& c : report.criteria) {
+    if (c.passed) continue;
+    auto row = empty_row(stem);
+    row[result] = c.section == "detector" ? "detector.peak_pixel_fill" : c.section + ".margin";
+    if (!std::isnan(c.margin)) row[computed] = full_precision(c.margin);
+    row[check] = c.informational ? "info" : "FAIL";
+    row[note] = (c.informational ? "informational criterion: " : "criterion fails: ") + c.reason;
+    rows.push_back(std::move(row));
+  }
+  for (const auto& w : report.warnings) {
+    auto row = empty_row(stem);
+    row[check] = "warning";
+    row[note] = w;
+    rows.push_back(std::move(row));
+  }
+
   for (const auto& name : extra_results) {
     auto row = empty_row(stem);
     row[result] = name;
     if (const auto it = index.find(name); it != index.end()) {
       const ResultInfo& info = report.results[it->second];
-      row[computed] = value6(report.values[it->second] * info.display_factor);
+      row[computed] = full_precision(report.values[it->second] * info.display_factor);
       row[unit] = unit_cell(info.display_unit);
       row[note] = info.equation;
     } else {
@@ -166,7 +189,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
       for (std::size_t c = 0; c < t.columns.size(); ++c) {
         auto row = empty_row(stem);
         row[result] = fmt::format("{} @ {} = {}", t.columns[c].name, t.spec.vary, t.spec.values_written[r]);
-        if (!std::isnan(t.rows[r][c])) row[computed] = value6(t.rows[r][c] * t.columns[c].display_factor);
+        if (!std::isnan(t.rows[r][c])) row[computed] = full_precision(t.rows[r][c] * t.columns[c].display_factor);
         row[unit] = unit_cell(t.columns[c].display_unit);
         row[note] = t.notes[r].empty() ? "table \"" + t.spec.name + "\"" : "table \"" + t.spec.name + "\": " + t.notes[r];
         rows.push_back(std::move(row));
@@ -206,7 +229,7 @@ static std::vector<std::vector<std::string>> uncertainty_rows(const std::string&
     for (const auto& [label, value] : {std::pair{"5 %", s.p5}, std::pair{"95 %", s.p95}}) {
       auto row = empty_row(stem);
       row[result] = fmt::format("{} @ {}", s.name, label);
-      if (!std::isnan(value)) row[computed] = value6(value * info.display_factor);
+      if (!std::isnan(value)) row[computed] = full_precision(value * info.display_factor);
       row[unit] = unit_cell(info.display_unit);
       row[note] = fmt::format("Monte Carlo over [uncertainty] ({}): {} of {} samples used", join(varied), mc.used, mc.samples);
       rows.push_back(std::move(row));

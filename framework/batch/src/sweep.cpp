@@ -61,6 +61,12 @@ double SweepAxis::value(std::size_t i) const {
   return from + (to - from) * static_cast<double>(i) / static_cast<double>(steps - 1);
 }
 
+double SweepAxis::value_si(std::size_t i) const {
+  if (i == 0) return from_si;
+  if (i + 1 >= steps) return to_si_value;
+  return units::to_si(value(i), to_si);
+}
+
 bool is_sweep_range(const std::string& value) { return value.find(':') != std::string::npos; }
 
 SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::string& range) {
@@ -108,6 +114,7 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
                                              : fmt::format("{}, e.g. {}", units::dimension_name(spec.si_unit), example);
   double ends[2] = {0, 0};
   std::string ends_unit[2];
+  units::ParsedQuantity written[2];
   for (int i = 0; i < 2; ++i) {
     const std::string text = trimmed(parts[static_cast<std::size_t>(i)]);
     units::ParsedQuantity q;
@@ -120,6 +127,7 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
       throw fail(fmt::format("\"{}\" has no unit: expected {}", text, expected));
     ends[i] = q.number;
     ends_unit[i] = q.unit;
+    written[static_cast<std::size_t>(i)] = q;
   }
   axis.unit = ends_unit[0].empty() ? ends_unit[1] : ends_unit[0];
   try {
@@ -129,6 +137,9 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
     const double to_factor = units::conversion(ends_unit[1].empty() ? "1" : ends_unit[1], si).factor;
     axis.from = ends[0];
     axis.to = ends[1] * to_factor / axis.to_si;
+    // The ends in SI as a file would read them (units::to_si of the text): a one-point sweep is the file's value.
+    axis.from_si = units::to_si(written[0], axis.to_si);
+    axis.to_si_value = units::to_si(written[1], to_factor);
   } catch (const std::invalid_argument&) {
     throw fail(fmt::format("unknown unit: expected {}", expected));
   } catch (const std::domain_error&) {
@@ -184,6 +195,15 @@ Sweep::Sweep(SweepOptions options) : options_(std::move(options)) {
     }
     units_.push_back(results.info(*id).display_unit);
   }
+  // A swept parameter is also a result (optics.aperture): its column is the axis's, once; two columns of one name
+  // make a table that numpy.load refuses.
+  for (std::size_t i = results_.size(); i-- > 0;)
+    for (const auto& a : axes_)
+      if (column_name(results_[i], units_[i]) == column_name(a.key, a.unit)) {
+        results_.erase(results_.begin() + static_cast<std::ptrdiff_t>(i));
+        units_.erase(units_.begin() + static_cast<std::ptrdiff_t>(i));
+        break;
+      }
   constexpr double max_points = SweepOptions::max_points;
   double points = 1;
   for (const auto& a : axes_) points *= static_cast<double>(a.steps);
@@ -375,8 +395,8 @@ void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, d
       }
     }  // (else a short group's unused lane: index_ still holds its last point)
     for (std::size_t a = 0; a < axes.size(); ++a) {
-      const double v = axes[a].value(index_[a]);  // (value_si() would compute it a second time)
-      values[a](lane) = v * axes[a].to_si;
+      const double v = axes[a].value(index_[a]);
+      values[a](lane) = axes[a].value_si(index_[a]);
       if (static_cast<std::size_t>(lane) < count) out[k * n_columns + a] = v;
     }
   }

@@ -256,6 +256,12 @@ void TableWriter::finish(int exit_code) {
     for (std::size_t i = 0; i < n; ++i) width[i] = display_width(w.layout.columns[i]);
     for (auto& row : w.buffered)
       for (std::size_t i = 0; i < n; ++i) {
+        if (i < w.layout.text_digits.size() && w.layout.text_digits[i] > 0 && !row[i].empty()) {
+          double value = 0;
+          const auto [end, error] = std::from_chars(row[i].data(), row[i].data() + row[i].size(), value);
+          if (error == std::errc() && end == row[i].data() + row[i].size())
+            row[i] = fmt::format("{:.{}g}", value, w.layout.text_digits[i]);
+        }
         if (row[i].empty()) row[i] = "-";
         width[i] = std::max(width[i], display_width(row[i]));
       }

@@ -18,6 +18,8 @@ bool Report::all_passed() const {
     if (!s.converged) return false;
   for (const auto& e : expectations)
     if (!e.passed) return false;
+  for (const auto& c : criteria)
+    if (!c.passed && !c.informational) return false;
   return true;
 }
 
@@ -60,7 +62,9 @@ void Chain::prepare_from(std::size_t first) {
     light_before_[k] = light_;
     slot.exchange.set.clear();
     slot.exchange.read.clear();
-    Context context(results_, light_, slot.section, slot.plugin, Detail::full, &slot.memo, &slot.exchange);
+    slot.spectral_warnings.clear();
+    Context context(results_, light_, slot.section, slot.plugin, Detail::full, &slot.memo, &slot.exchange,
+                    &slot.spectral_warnings);
     run_stage(slot, sensor_file, [&] { slot.stage->prepare(context); });
   }
   spectral_from_ = stages.size();
@@ -103,7 +107,8 @@ void Chain::evaluate_from(std::size_t first, Detail detail) {
   for (std::size_t k = first; k < stages.size(); ++k) {
     scales_before_[k] = Scales{light_.illumination_scale, light_.signal.scale, light_.background.scale, light_.up_path_scale};
     StageSlot& slot = stages[k];
-    Context context(results_, light_, slot.section, slot.plugin, detail);
+    slot.scalar_warnings.clear();
+    Context context(results_, light_, slot.section, slot.plugin, detail, nullptr, nullptr, &slot.scalar_warnings);
     run_stage(slot, sensor_file, [&] { slot.stage->evaluate(context); });
   }
   for (const ResolvedSolve& r : resolved_)
@@ -287,7 +292,52 @@ Report Chain::run() {
     report.expectations.push_back(outcome);
   }
   for (const TableSpec& table : tables) report.tables.push_back(tabulate(table));
+  report.criteria = criterion_outcomes(report.solves);
+  for (const StageSlot& slot : stages) {
+    report.warnings.insert(report.warnings.end(), slot.spectral_warnings.begin(), slot.spectral_warnings.end());
+    report.warnings.insert(report.warnings.end(), slot.scalar_warnings.begin(), slot.scalar_warnings.end());
+  }
   return report;
+}
+
+std::vector<CriterionOutcome> Chain::criterion_outcomes(const std::vector<SolveOutcome>& solves) const {
+  std::vector<CriterionOutcome> out;
+  bool saturation_judged = false;
+  for (const StageSlot& slot : stages) {
+    if (slot.section.rfind("criteria.", 0) != 0) continue;
+    saturation_judged = saturation_judged || slot.plugin == "unsaturated";
+    CriterionOutcome c;
+    c.section = slot.section;
+    c.informational = slot.informational;
+    const std::string name = slot.section.substr(std::string_view("criteria.").size());
+    const auto id = results_.find(slot.section + ".margin");
+    if (!id) continue;  // a criterion without a margin judges nothing
+    c.margin = results_.value(*id);
+    bool solved = false;  // the binding criterion of a converged solve: its margin is the root's residual
+    for (const SolveOutcome& s : solves) solved = solved || (s.converged && s.binding == name);
+    // A margin of −1e-9 is rounding at a threshold (unsaturated's own `saturated` flag uses the same).
+    c.passed = solved || c.margin >= -1e-9;
+    if (std::isnan(c.margin)) {
+      c.passed = solved;
+      if (!solved) c.reason = "its margin was not computed (a failed solve before it)";
+    } else if (!c.passed) {
+      c.reason = fmt::format("margin {:+.4g} < 0: {}", c.margin, results_.info(*id).equation);
+    }
+    out.push_back(std::move(c));
+  }
+  // No SNR of a clipped pixel is valid: without an `unsaturated` criterion the detector's brightest pixel is
+  // judged here.
+  if (!saturation_judged)
+    if (const auto fill = results_.find("detector.peak_pixel_fill"); fill && results_.value(*fill) > 1 + 1e-9) {
+      const double f = results_.value(*fill);
+      out.push_back(CriterionOutcome{
+          "detector", 1 / f - 1, false, false,
+          fmt::format("the brightest pixel holds {:.4g} % of its capacity (detector.peak_pixel_fill): it saturates, and "
+                      "the SNR of a clipped pixel is not valid (add [criteria.unsaturated] with informational = true "
+                      "to accept it)",
+                      100 * f)});
+    }
+  return out;
 }
 
 TableOutcome Chain::tabulate(const TableSpec& table) {

@@ -254,6 +254,12 @@ double Context::read_in_spectral_phase(ResultId id) {
   return results.value(id);
 }
 
+void Context::warn(const InputError& warning) {
+  if (!warnings_) return;
+  const std::string line = warning.what();
+  if (std::find(warnings_->begin(), warnings_->end(), line) == warnings_->end()) warnings_->push_back(line);
+}
+
 void Context::refuse_form(const std::string& what, RadiationForm form) const {
   // No light at all: the file is geometry-only (sensor_file.cpp: no [source], [atmosphere], [target]).
   if (form == RadiationForm::none)

@@ -74,6 +74,14 @@ std::string format_report_text(const Report& report) {
                          e.spec.result, display_of_expectation(e), computed, delta, e.spec.source);
     }
   }
+  if (!report.criteria.empty()) {
+    out += "criteria:\n";
+    for (const auto& c : report.criteria)
+      out += fmt::format("  {:<4} {:<28} margin {:+.4g}{}{}\n",
+                         c.passed ? "ok" : c.informational ? "info" : "FAIL", c.section, c.margin,
+                         c.informational ? " (informational)" : "", c.reason.empty() ? "" : ": " + c.reason);
+  }
+  for (const auto& w : report.warnings) out += "warning: " + w + "\n";
   for (const auto& t : report.tables) out += format_table_text(t);
   return out;
 }
@@ -145,6 +153,12 @@ std::string format_report_json(const Report& report) {
     table["notes"] = t.notes;
     tables.push_back(std::move(table));
   }
+  auto& criteria = j["criteria"] = nlohmann::ordered_json::array();
+  for (const auto& c : report.criteria)
+    criteria.push_back({{"section", c.section},
+                        {"margin", std::isnan(c.margin) ? nlohmann::ordered_json() : nlohmann::ordered_json(c.margin)},
+                        {"passed", c.passed}, {"informational", c.informational}, {"reason", c.reason}});
+  j["warnings"] = report.warnings;
   j["passed"] = report.all_passed();
   return j.dump(2) + "\n";
 }

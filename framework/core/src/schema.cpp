@@ -148,13 +148,15 @@ const Spectrum& Params::spectrum(std::string_view key) const {
   return *e.spectrum;
 }
 
-void Params::reject(const std::string& key, const std::string& problem) const {
+void Params::reject(const std::string& key, const std::string& text) const { throw problem(key, text); }
+
+InputError Params::problem(const std::string& key, const std::string& problem) const {
   const Entry& e = entry(key);
   // A value a sweep or a solve set has no text as written: its number then, in SI.
   const bool numeric = e.spec->type == ParamType::quantity || e.spec->type == ParamType::number || e.spec->type == ParamType::integer;
   const std::string unit = e.spec->type == ParamType::quantity && e.spec->si_unit != "1" ? " " + e.spec->si_unit : "";
   const std::string value = !e.as_written.empty() || !numeric ? e.as_written : fmt::format("{:g}{}", e.number, unit);
-  throw InputError(e.where, context(), key + " = " + value, problem);
+  return InputError(e.where, context(), key + " = " + value, problem);
 }
 
 std::optional<std::string> resolve_data_file(const std::string& name, const std::string& sensor_file) {
@@ -217,7 +219,7 @@ void assign_one(Params& params, Params::Entry& entry, const ConfigValue& value, 
       } catch (const std::domain_error&) {
         throw fail(spec.expected_text());
       }
-      entry.number = q.number * factor;
+      entry.number = units::to_si(q, factor);
       check_range(entry.number);
       break;
     }

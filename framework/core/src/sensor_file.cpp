@@ -123,7 +123,20 @@ void build_stage(Chain& chain, const std::string& section, const ConfigValue& ta
   slot.info = info;
   slot.plugin = info->name;
   ValidationContext context{file, section, info->name};
-  slot.params = std::make_unique<Params>(validate_section(info->schema(), table, context));
+  // `informational = true` on any criterion (a key of the file, not of the plugin): its failure is reported, and the
+  // run still passes. Taken out before the plugin's schema sees the table.
+  const ConfigValue* informational = kind == Kind::criterion ? table.find("informational") : nullptr;
+  if (informational) {
+    if (informational->type != ConfigValue::Type::boolean)
+      throw InputError(informational->where, section + " (plugin \"" + info->name + "\")",
+                       "informational = " + informational->as_toml(), "expected true or false");
+    slot.informational = informational->boolean_value;
+    ConfigValue rest = table;
+    std::erase_if(rest.members, [](const auto& member) { return member.first == "informational"; });
+    slot.params = std::make_unique<Params>(validate_section(info->schema(), rest, context));
+  } else {
+    slot.params = std::make_unique<Params>(validate_section(info->schema(), table, context));
+  }
   slot.stage = info->create(*slot.params);
   chain.stages.push_back(std::move(slot));
 }
@@ -132,6 +145,89 @@ void build_stage(Chain& chain, const std::string& section, const ConfigValue& ta
 
 // The sensor file as parsed (a file or text named `path`) -> Chain: what load_sensor and load_sensor_text share.
 static Chain build_sensor(ConfigValue root, const std::string& path, const std::vector<Override>& overrides);
+
+namespace {
+
+// How a value reads in a message: as written, or its default (SI).
+std::string written_or_default(const Params& params, const std::string& key) {
+  const Params::Entry& e = params.entry(key);
+  if (e.given && !e.as_written.empty()) return e.as_written;
+  const std::string unit = e.spec->type == ParamType::quantity && e.spec->si_unit != "1" ? " " + e.spec->si_unit : "";
+  return fmt::format("{:g}{} (its default)", e.number, unit);
+}
+
+// "detector (plugin "emva1288") at sensors/x.toml:35:1": where a value is stated (its section's line for a default).
+std::string where_of(const Params& params, const std::string& key) {
+  const std::string at = params.entry(key).where.str();
+  return at.empty() ? params.context() : params.context() + " at " + at;
+}
+
+// A quantity two stages read is stated once. A criterion that repeats one of the detector's keys (the pixel pitch
+// of the GSD, the TDI stages of the MTF) with another value would compute its geometry or MTF for another camera
+// than the radiometry's; a GIQE wavelength outside the detector's band evaluates diffraction where no light is
+// counted. Refused with both places.
+void check_stated_once(const Chain& chain) {
+  const Params *detector = nullptr, *source = nullptr, *atmosphere = nullptr, *target = nullptr;
+  for (const StageSlot& slot : chain.stages) {
+    if (slot.section == "detector") detector = slot.params.get();
+    if (slot.section == "source") source = slot.params.get();
+    if (slot.section == "atmosphere") atmosphere = slot.params.get();
+    if (slot.section == "target") target = slot.params.get();
+  }
+  auto gives = [](const Params* params, const std::string& key) {
+    if (!params) return false;
+    for (const ParamSpec& spec : params->schema())
+      if (spec.key == key) return params->given(key);
+    return false;
+  };
+  // The Sun's zenith and the down path's airmass: an airmass_lut atmosphere runs before the target, so a zenith
+  // given on the target never reaches it, and its down path took the Sun at the view's airmass (+23 % signal at
+  // 60° with a 30° Sun).
+  if (atmosphere && atmosphere->plugin() == "airmass_lut" && atmosphere->flag("down_path") &&
+      !gives(atmosphere, "sun_airmass") && !gives(source, "solar_zenith"))
+    for (const char* key : {"solar_zenith", "latitude"})
+      if (gives(target, key))
+        target->reject(key, fmt::format("the atmosphere's down path ({}, down_path) runs before the target and took the Sun at "
+                                        "the line of sight's airmass: give solar_zenith to the source (plugin "
+                                        "\"sun\"), which sets the Sun for the whole chain, or sun_airmass to the "
+                                        "atmosphere",
+                                        where_of(*atmosphere, "down_path")));
+  if (!detector) return;
+  auto detector_has = [&](const std::string& key) {
+    for (const ParamSpec& spec : detector->schema())
+      if (spec.key == key) return detector->has(key);
+    return false;
+  };
+  for (const StageSlot& slot : chain.stages) {
+    if (slot.section.rfind("criteria.", 0) != 0) continue;
+    const Params& criterion = *slot.params;
+    auto criterion_gives = [&](const std::string& key) {
+      for (const ParamSpec& spec : criterion.schema())
+        if (spec.key == key) return criterion.given(key);
+      return false;
+    };
+    for (const char* key : {"pixel_pitch", "tdi_stages"}) {
+      if (!criterion_gives(key) || !detector_has(key)) continue;
+      const double mine = criterion.get(key), theirs = detector->get(key);
+      if (std::abs(mine - theirs) <= 1e-9 * std::max(std::abs(mine), std::abs(theirs))) continue;
+      criterion.reject(key, fmt::format("{} has {} = {}: state it once, in [detector] (this criterion then reads the "
+                                        "detector's)",
+                                        where_of(*detector, key), key, written_or_default(*detector, key)));
+    }
+    if (criterion_gives("wavelength") && detector_has("band_min") && detector_has("band_max")) {
+      const double wavelength = criterion.get("wavelength");
+      const double lo = detector->get("band_min"), hi = detector->get("band_max");
+      if (wavelength < lo * (1 - 1e-9) || wavelength > hi * (1 + 1e-9))
+        criterion.reject("wavelength", fmt::format("lies outside the detector's band {} ({} has band_min = {}, band_max = "
+                                                   "{}): the MTF would be evaluated where no light is counted",
+                                                   nm_range(lo, hi), where_of(*detector, "band_min"),
+                                                   written_or_default(*detector, "band_min"),
+                                                   written_or_default(*detector, "band_max")));
+    }
+  }
+}
+
+}  // namespace
 static void read_tables(Chain& chain, const ConfigValue& tables, const std::string& path);
 
 Chain load_sensor(const std::string& path, const std::vector<Override>& overrides) {
@@ -195,6 +291,7 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
       criteria.push_back(name);
     }
   }
+  check_stated_once(chain);
 
   // Solves. Their unknowns are reported as results of the section that owns the parameter.
   std::vector<std::pair<std::string, std::string>> solved_units;  // unknown, display unit

@@ -64,8 +64,8 @@ std::string unit_of_column(const std::string& column) {
 SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expected_si_unit,
                                Extrapolation extrapolation) {
   std::ifstream in(path);
-  auto fail = [&](int line, const std::string& problem) -> InputError {
-    return InputError(SourceLocation{path, line, 0}, "spectrum file", "", problem);
+  auto fail = [&](int line, const std::string& problem, int column = 0) -> InputError {
+    return InputError(SourceLocation{path, line, column}, "spectrum file", "", problem);
   };
   if (!in) throw fail(0, "cannot be read (missing file or no permission)");
   // Limits (issue 18): a sensor file may name any readable file; a spectrum is a few thousand rows, never a
@@ -85,6 +85,7 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
   SpectrumFile out;
   std::string line;
   int line_number = 0;
+  bool at_most_one = false;
   bool have_header = false;
   double wavelength_factor = 1.0, value_factor = 1.0;
   std::vector<double> wavelengths, values;
@@ -114,6 +115,9 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
         throw fail(line_number, "wavelength column unit \"" + wl.substr(11) + "\" is not a length");
       }
       out.value_column = trim(fields[1]);
+      // Passive optics and a quantum efficiency cannot exceed 1 (a transmittance of 5 would read 1.7 mag deeper).
+      for (const char* bounded : {"transmittance", "throughput", "quantum_efficiency"})
+        at_most_one = at_most_one || out.value_column.rfind(bounded, 0) == 0;
       const std::string unit = unit_of_column(out.value_column);
       const bool dimensionless_expected = units::dimension_of(expected_si_unit) == "1";
       if (unit.empty() && !dimensionless_expected) {
@@ -142,6 +146,17 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
       throw fail(line_number, "\"" + text + "\" is not two numbers");
     }
     if (!std::isfinite(w) || !std::isfinite(v)) throw fail(line_number, "non-finite number");
+    // std::stod reads hexadecimal floats too ("0x10" is 16): a table is decimal, and a hex cell is a corrupted one.
+    if (fields[0].find_first_of("xX") != std::string::npos || fields[1].find_first_of("xX") != std::string::npos)
+      throw fail(line_number, "\"" + text + "\" is not two decimal numbers (hexadecimal is not accepted)");
+    const int value_column = static_cast<int>(line.find(',')) + 2;  // 1-based, after the comma
+    if (!(w > 0)) throw fail(line_number, "wavelength " + trim(fields[0]) + " is not positive", 1);
+    // Every spectrum is a non-negative physical quantity (an emission, a response, a transmittance, an absorption
+    // coefficient): a negative cell would be integrated as light taken away.
+    if (v < 0)
+      throw fail(line_number, "value " + trim(fields[1]) + " is negative: a spectrum, response or transmittance is ≥ 0", value_column);
+    if (v > 1 && at_most_one)
+      throw fail(line_number, "value " + trim(fields[1]) + " is above 1: a " + out.value_column + " cannot exceed 1", value_column);
     if (!wavelengths.empty() && !(w * wavelength_factor > wavelengths.back()))
       throw fail(line_number, "wavelengths must be strictly increasing (" + trim(fields[0]) + " follows a larger or equal one)");
     wavelengths.push_back(w * wavelength_factor);

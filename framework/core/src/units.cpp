@@ -227,7 +227,37 @@ ParsedQuantity split_quantity(const std::string& text) {
   const auto first = unit.find_first_not_of(" \t");
   const auto last = unit.find_last_not_of(" \t");
   unit = first == std::string::npos ? std::string() : unit.substr(first, last - first + 1);
-  return ParsedQuantity{number, unit};
+  return ParsedQuantity{number, unit, std::string(begin, static_cast<const char*>(end))};
+}
+
+double to_si(double number, double factor) {
+  static const double powers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                  1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};  // exact
+  for (int k = 1; k <= 22; ++k) {
+    if (factor == powers[k]) return number * powers[k];
+    if (factor == 1.0 / powers[k]) return number / powers[k];  // 1/10^k as the literal 1e-k is: the nearest double
+  }
+  return number * factor;
+}
+
+double to_si(const ParsedQuantity& quantity, double factor) {
+  const double computed = to_si(quantity.number, factor);
+  if (factor == 1.0 || quantity.number_text.empty()) return computed;
+  const int k = static_cast<int>(std::lround(std::log10(factor)));
+  if (k < -300 || k > 300 || factor != std::strtod(("1e" + std::to_string(k)).c_str(), nullptr)) return computed;
+  std::string mantissa = quantity.number_text;
+  long exponent = 0;
+  if (const auto e = mantissa.find_first_of("eE"); e != std::string::npos) {
+    char* end = nullptr;
+    exponent = std::strtol(mantissa.c_str() + e + 1, &end, 10);
+    if (*end != '\0') return computed;  // not a plain decimal exponent
+    mantissa.resize(e);
+  }
+  if (mantissa.find_first_of("xXnNiI") != std::string::npos) return computed;  // hex, nan, inf: not decimal text
+  const std::string shifted = mantissa + "e" + std::to_string(exponent + k);
+  char* end = nullptr;
+  const double value = std::strtod(shifted.c_str(), &end);
+  return *end == '\0' && std::isfinite(value) ? value : computed;
 }
 
 }  // namespace radchain::units

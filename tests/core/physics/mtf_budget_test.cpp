@@ -39,6 +39,8 @@ TEST(MtfBudget, WavefrontErrorAberrationTransferFactor) {
   EXPECT_NEAR(wavefront_error_mtf(0.5 * nu_c, lambda, n, 0.09), 0.75, 1e-12);
   EXPECT_NEAR(wavefront_error_mtf(1e-9 * nu_c, lambda, n, 0.09), 1.0, 1e-8);
   EXPECT_NEAR(wavefront_error_mtf(0.25 * nu_c, lambda, n, 0.09), 1 - 0.25 * (1 - 4 * 0.0625), 1e-12);
+  EXPECT_EQ(wavefront_error_mtf(nu_c, lambda, n, 0.09), 1.0);         // the factor's end value
+  EXPECT_EQ(wavefront_error_mtf(1.5 * nu_c, lambda, n, 0.0), 1.0);    // beyond the cut-off: not a 0 of its own
 }
 
 TEST(MtfBudget, TdiSynchronisationIsADirichletKernel) {

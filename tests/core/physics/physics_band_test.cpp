@@ -14,6 +14,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <tuple>
 
 namespace {
 using namespace radchain;
@@ -49,17 +50,34 @@ TEST(PhysicsBand, ClosedFormSeriesMatchesQuadratureOfPlanck) {
 }
 
 TEST(PhysicsBand, SampledPlanckSpectrumGivesTheClosedFormFractions) {
-  // z(λ) of a Planck curve sampled on planck_grid_m() (100 nm - 100 µm) against the series. The grid stops
-  // at 100 µm, so z is relative to the sampled total F(0→100 µm) (below 100 nm: < 1e-7 even at 5900 K). What is left is
-  // the trapezoid rule's error on the grid.
+  // z(λ) of a Planck curve sampled on planck_grid_m() (10 nm - 1 mm) against the series. The grid stops
+  // at 1 mm, so z is relative to the sampled total F(0→1 mm) (below 10 nm: nothing at these temperatures). What is
+  // left is the trapezoid rule's error on the grid.
   for (double t : {2854.0, 5900.0}) {
     const Spectrum s = blackbody_exitance_spectrum(t);
-    const double sampled_total = blackbody_fraction_below(100 * um, t);
+    const double sampled_total = blackbody_fraction_below(1000 * um, t);
     for (double l_um : {0.3, 0.5, 0.76, 1.0, 3.0, 10.0}) {
       const double expected = blackbody_fraction_below(l_um * um, t) / sampled_total;
       EXPECT_NEAR(fraction_below(s, l_um * um), expected, 1e-6) << t << " K, " << l_um << " µm";
     }
     EXPECT_NEAR(band_fraction(s, 0.5 * um, 0.76 * um), blackbody_band_fraction(0.5 * um, 0.76 * um, t) / sampled_total, 1e-6);
+  }
+}
+
+// A Planck curve is defined wherever a band may be asked for: far UV and far infrared bands integrate to the
+// exitance in the band (it was 0 beyond 100 µm), against Gauss-Kronrod quadrature of Planck's law over the band
+// itself (fractions of the total would cancel: 300-900 µm holds 1e-8 of a 5900 K body).
+TEST(PhysicsBand, SampledPlanckSpectrumCoversFarUvAndFarInfraredBands) {
+  for (double t : {300.0, 2854.0, 5900.0}) {
+    const Spectrum s = blackbody_exitance_spectrum(t);
+    // Tolerance: the trapezoid's error on the grid, ~(h x)²/12 for the relative step h and x = c2/(λT): < 1e-5 in
+    // the far infrared (h = 0.15 %), up to 3e-4 on the Wien tail in the far UV (h = 0.23 %, x ≈ 27).
+    for (auto [lo_um, hi_um, tolerance] : {std::tuple{0.08, 0.1, 1e-3}, std::tuple{120.0, 400.0, 1e-5}, std::tuple{300.0, 900.0, 1e-5}}) {
+      auto planck = [&](double l) { return planck_spectral_exitance(l, t); };
+      const double expected = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(planck, lo_um * um, hi_um * um, 15, 1e-13);
+      if (expected < 1e-30) continue;  // the far UV of a 300 K or 2854 K body: nothing to compare
+      EXPECT_NEAR(s.integral(lo_um * um, hi_um * um) / expected, 1.0, tolerance) << t << " K, " << lo_um << "-" << hi_um << " µm";
+    }
   }
 }
 
@@ -71,8 +89,8 @@ TEST(PhysicsBand, ReferenceLampInTheWorkingBand) {
 
 TEST(PhysicsBand, FractionBelowOutsideTheGridAndBadInput) {
   const Spectrum s = blackbody_exitance_spectrum(5900.0);
-  EXPECT_EQ(fraction_below(s, 50e-9), 0.0);
-  EXPECT_EQ(fraction_below(s, 1e-3), 1.0);
+  EXPECT_EQ(fraction_below(s, 5e-9), 0.0);
+  EXPECT_EQ(fraction_below(s, 2e-3), 1.0);
   const Spectrum zero = Spectrum::sampled(planck_grid_m(), [](double) { return 0.0; }, "W m-2 m-1");
   EXPECT_THROW(fraction_below(zero, 0.5 * um), std::invalid_argument);
 }

@@ -99,17 +99,17 @@ const Case cases[] = {
     {"fairchild", "per-watt", Reading::whole_whole, {0.1832, 0.3659, 0.5006}},
     {"fairchild", "per-watt", Reading::calibration, {0.1832, 0.6342, 0.2888}},
     {"fairchild", "per-photon", Reading::band_band, {0.7425, 0.6566, 1.1307}},
-    {"fairchild", "per-photon", Reading::band_whole, {0.0226, 0.1328, 0.1700}},
-    {"fairchild", "per-photon", Reading::whole_whole, {0.0787, 0.2752, 0.2858}},
-    {"fairchild", "per-photon", Reading::calibration, {0.0787, 0.6566, 0.1198}},
+    {"fairchild", "per-photon", Reading::band_whole, {0.0226, 0.1328, 0.1699}},
+    {"fairchild", "per-photon", Reading::whole_whole, {0.0786, 0.2752, 0.2856}},
+    {"fairchild", "per-photon", Reading::calibration, {0.0786, 0.6566, 0.1197}},
     {"hamamatsu", "per-watt", Reading::band_band, {0.9315, 0.8922, 1.0440}},
     {"hamamatsu", "per-watt", Reading::band_whole, {0.0805, 0.2764, 0.2912}},
     {"hamamatsu", "per-watt", Reading::whole_whole, {0.2152, 0.5467, 0.3937}},
     {"hamamatsu", "per-watt", Reading::calibration, {0.2152, 0.8922, 0.2412}},
     {"hamamatsu", "per-photon", Reading::band_band, {0.9652, 0.9775, 0.9874}},
-    {"hamamatsu", "per-photon", Reading::band_whole, {0.0293, 0.1977, 0.1484}},
-    {"hamamatsu", "per-photon", Reading::whole_whole, {0.0785, 0.3910, 0.2007}},
-    {"hamamatsu", "per-photon", Reading::calibration, {0.0785, 0.9775, 0.0803}},
+    {"hamamatsu", "per-photon", Reading::band_whole, {0.0293, 0.1977, 0.1483}},
+    {"hamamatsu", "per-photon", Reading::whole_whole, {0.0784, 0.3910, 0.2006}},
+    {"hamamatsu", "per-photon", Reading::calibration, {0.0784, 0.9775, 0.0802}},
 };
 
 TEST(PhysicsUtilisation, ShippedSiliconCurvesUnderEachReading) {

@@ -35,6 +35,8 @@ struct StageSlot {
   std::unique_ptr<Stage> stage;
   StageMemo memo;                      // what the stage declared and looked up at its last spectral phase
   SpectralExchange exchange;           // what its last spectral phase set for later ones and read from earlier ones
+  std::vector<std::string> spectral_warnings, scalar_warnings;  // Context::warn of its last phase of each kind
+  bool informational = false;          // a criterion whose failure is reported but does not fail the run
 };
 
 // A numeric parameter of one stage, found once by name ("optics.aperture"); Chain::set() through it marks what
@@ -147,6 +149,16 @@ struct TableOutcome {
   std::vector<std::string> notes;  // per row: "" or why a solve failed there
 };
 
+// A criterion as the run left it: its margin (achieved/required − 1: ≥ 0 holds) and whether it holds. The criterion
+// a converged [[solve]] drove to 0 holds by construction (its margin is the solver's residual, ~1e-15).
+struct CriterionOutcome {
+  std::string section;       // "criteria.unsaturated"; "detector" for the detector's own saturation check
+  double margin = 0;
+  bool passed = true;
+  bool informational = false;  // `informational = true`: reported, and the run still passes
+  std::string reason;          // why it fails ("" when it holds)
+};
+
 struct Report {
   std::string sensor_file;
   std::string sensor_name;
@@ -155,7 +167,10 @@ struct Report {
   std::vector<SolveOutcome> solves;
   std::vector<ExpectationOutcome> expectations;
   std::vector<TableOutcome> tables;       // [[table]] entries (a failed row is reported, not a failed check)
-  bool all_passed() const;                // every solve converged and every expectation passed
+  std::vector<CriterionOutcome> criteria; // every criterion, and the detector's saturation without one
+  std::vector<std::string> warnings;      // located lines: results computed but physically suspect (Context::warn)
+  // Every solve converged, every expectation passed, and every criterion not marked informational holds.
+  bool all_passed() const;
   std::optional<double> value(const std::string& name) const;
 };
 
@@ -244,6 +259,7 @@ class Chain {
   bool read_in_spectral_phase(const double* parameter) const;
   void evaluate_from(std::size_t first, Detail detail);
   void evaluate_lane_by_lane(StageSlot& slot, Detail detail);  // a stage without evaluate_lanes()
+  std::vector<CriterionOutcome> criterion_outcomes(const std::vector<SolveOutcome>& solves) const;
 
   Results results_;
   Light light_;

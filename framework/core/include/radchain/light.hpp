@@ -5,6 +5,7 @@
 #include "radchain/spectrum.hpp"
 
 #include <string>
+#include <vector>
 
 namespace radchain {
 
@@ -23,6 +24,15 @@ struct Radiation {
   double scale = 1.0;
 };
 
+// A table (0 outside it) that a stage multiplied into the light: an SED, a source's spectrum, an atmosphere's
+// transmittance table, an optics transmittance curve. `what` names it as messages do:
+// `transmittance_curve = "m1.csv" of optics (plugin "telescope")`.
+struct SpectralTable {
+  double min_m = 0.0, max_m = 0.0;
+  bool zero_at_min = false, zero_at_max = false;  // the table itself falls to 0 at that end (a filter's edge)
+  std::string what;
+};
+
 struct Light {
   // The source's spectral irradiance at the target (W m^-2 m^-1), per unit `illumination_scale`.
   Spectrum illumination;
@@ -36,6 +46,9 @@ struct Light {
   Spectrum up_path_transmittance;
   double up_path_scale = 1.0;
   Spectrum path_radiance;
+  // Every table the light went through so far (spectral_limits.hpp): a detector band that reaches past one of them
+  // is refused by its name, since the light there is unknown, not dark.
+  std::vector<SpectralTable> tables;
   // The working band in which in-band totals are reported (E's, E0, ΔM); 0 = not set.
   double report_band_min_m = 0.0, report_band_max_m = 0.0;
   bool has_report_band() const { return report_band_max_m > report_band_min_m; }

@@ -18,14 +18,28 @@ struct Look {
 class LookTerms {
  public:
   // In prepare(): the terms this criterion needs (declared in its PluginInfo.needs); without a pixel pitch of its
-  // own or the detector's, `params` refuses at `pitch_key_for_error`.
-  void find(Context& c, const Params& params, const std::string& pitch_key_for_error) {
-    altitude_ = c.require(vocabulary::platform_altitude);
-    tilt_ = c.require(vocabulary::platform_tilt);
+  // own or the detector's, `params` refuses at `pitch_key_for_error`. A stage that reads the look only in some
+  // configurations lists the platform's terms as if_present() and passes `platform_optional`: a missing platform is
+  // then refused at `pitch_key_for_error` too.
+  void find(Context& c, const Params& params, const std::string& pitch_key_for_error, bool platform_optional = false) {
+    if (platform_optional) {
+      const auto altitude = c.find(vocabulary::platform_altitude), tilt = c.find(vocabulary::platform_tilt);
+      if (!altitude || !tilt) params.reject(pitch_key_for_error, "needs an orbiting platform (its altitude and look)");
+      altitude_ = *altitude, tilt_ = *tilt;
+    } else {
+      altitude_ = c.require(vocabulary::platform_altitude);
+      tilt_ = c.require(vocabulary::platform_tilt);
+    }
     roll_ = c.find(vocabulary::platform_roll);
     pitch_angle_ = c.find(vocabulary::platform_pitch);
     radius_ = c.find(vocabulary::platform_earth_radius);
-    focal_ = c.require(vocabulary::optics_focal_length);
+    if (platform_optional) {
+      const auto focal = c.find(vocabulary::optics_focal_length);
+      if (!focal) params.reject(pitch_key_for_error, "needs the optics' focal length");
+      focal_ = *focal;
+    } else {
+      focal_ = c.require(vocabulary::optics_focal_length);
+    }
     own_pitch_ = params.has("pixel_pitch") ? params.handle("pixel_pitch") : nullptr;
     detector_pitch_ = own_pitch_ ? std::nullopt : c.find(vocabulary::detector_pixel_pitch);
     if (!own_pitch_ && !detector_pitch_)

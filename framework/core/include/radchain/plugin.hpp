@@ -8,6 +8,7 @@
 #include "radchain/light.hpp"
 #include "radchain/results.hpp"
 #include "radchain/schema.hpp"
+#include "radchain/spectral_limits.hpp"
 #include "radchain/version.hpp"
 #include "radchain/vocabulary.hpp"
 
@@ -102,9 +103,10 @@ struct SpectralExchange {
 class Context {
  public:
   Context(Results& results, Light& light, const std::string& section, const std::string& plugin,
-          Detail detail = Detail::full, StageMemo* memo = nullptr, SpectralExchange* exchange = nullptr)
+          Detail detail = Detail::full, StageMemo* memo = nullptr, SpectralExchange* exchange = nullptr,
+          std::vector<std::string>* warnings = nullptr)
       : results(results), light(light), section(section), plugin(plugin), detail(detail), memo_(memo),
-        exchange_(exchange) {}
+        exchange_(exchange), warnings_(warnings) {}
 
   Results& results;
   Light& light;
@@ -140,6 +142,11 @@ class Context {
   double read_in_spectral_phase(ResultId id);
   // The incoming radiation has a form this stage cannot take.
   [[noreturn]] void refuse_form(const std::string& what, RadiationForm form) const;
+  // A result that is computed but physically suspect (an equation used outside its fitted range, a table
+  // extrapolated): the located line (Params::problem) reaches the report's warnings, in text and JSON. A warning of
+  // the spectral phase lasts until the stage's next spectral phase, one of the scalar phase until its next
+  // evaluation, so the report shows those of the values it prints.
+  void warn(const InputError& warning);
 
  private:
   ResultId declare_result(const Term* term, std::string_view name, std::string_view si_unit, std::string_view equation,
@@ -152,6 +159,7 @@ class Context {
   std::size_t next_declaration_ = 0;
   std::size_t next_lookup_ = 0;
   SpectralExchange* exchange_;           // the spectral phase's (null in the scalar phase)
+  std::vector<std::string>* warnings_;   // this stage's, of this phase (null: not kept, e.g. one lane of many)
 };
 
 // What a stage's scalar phase sees when it evaluates one point (a view of Context).

@@ -2,6 +2,7 @@
 // A plugin's parameter schema: key, kind, SI unit, default or required, range or allowed values, one-line
 // doc. It drives validation, the error texts, `radchain describe` and the generated reference page.
 #include "radchain/config.hpp"
+#include "radchain/error.hpp"
 #include "radchain/spectrum.hpp"
 
 #include <cstdint>
@@ -119,6 +120,8 @@ class Params {
 
   // A plugin's own consistency rule failed for `key` (e.g. element size larger than pitch).
   [[noreturn]] void reject(const std::string& key, const std::string& problem) const;
+  // The same located line, not thrown: for a warning (Context::warn).
+  InputError problem(const std::string& key, const std::string& problem) const;
 
   std::vector<Entry>& entries() { return entries_; }
   const std::vector<Entry>& entries() const { return entries_; }

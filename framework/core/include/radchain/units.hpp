@@ -30,9 +30,20 @@ std::string dimension_name(const std::string& si_unit);
 // A quantity written as text: "400 km", "0.0002 uJ/cm2", "1e5 e-", "-26.73" (no unit).
 struct ParsedQuantity {
   double number = 0.0;
-  std::string unit;  // trimmed; empty when the text was a bare number
+  std::string unit;         // trimmed; empty when the text was a bare number
+  std::string number_text;  // the number as written ("519.6", "1e5")
 };
 // Throws std::invalid_argument if the text does not start with a number.
 ParsedQuantity split_quantity(const std::string& text);
+
+// A number in a unit, in SI: number × factor. A power-of-ten factor 10^k (a prefix: um, nm, cm, ms) is applied as
+// a division by the exact 10^-k (or a product by the exact 10^k), one correctly rounded operation: "7.5 um" is then
+// the double nearest 7.5e-6, as "0.0000075 m" is, where 7.5 × 1e-6 (1e-6 itself rounded) landed an ulp away and
+// the same input written in other units gave other bits downstream. Sweeps and files convert the same way.
+double to_si(double number, double factor);
+// A number as written, in SI: with a power-of-ten factor the decimal exponent is shifted in the text, which is
+// parsed once: "519.6 nm" is the double nearest 5.196e-7, as "0.5196 um" and "5.196e-7 m" are (519.6 is not a
+// double, and dividing its nearest double by 1e9 can land an ulp away). Else to_si(number, factor).
+double to_si(const ParsedQuantity& quantity, double factor);
 
 }  // namespace radchain::units

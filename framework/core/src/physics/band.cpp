@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace radchain::physics {
 
@@ -48,14 +49,23 @@ Spectrum per_watt_relative_response(const Spectrum& quantum_efficiency) {
 }
 
 Eigen::ArrayXd planck_grid_m() {
+  constexpr int uv_steps = 1000;       // 10 nm -> 100 nm, logarithmic
   constexpr int linear_points = 2401;  // 100, 101, ..., 2500 nm
   constexpr int log_steps = 2000;      // 2500 nm -> 100 µm
-  Eigen::ArrayXd grid(linear_points + log_steps);
-  for (int i = 0; i < linear_points; ++i) grid(i) = (100.0 + i) * 1e-9;
-  const double ratio = std::log(100e-6 / 2500e-9) / log_steps;
-  for (int k = 1; k <= log_steps; ++k) grid(linear_points + k - 1) = 2500e-9 * std::exp(ratio * k);
-  grid(grid.size() - 1) = 100e-6;
-  return grid;
+  constexpr int far_ir_steps = 1500;   // 100 µm -> 1 mm
+  std::vector<double> grid;
+  grid.reserve(uv_steps + linear_points + log_steps + far_ir_steps);
+  auto logarithmic = [&](double from, double to, int steps) {  // (from, to]
+    const double ratio = std::log(to / from) / steps;
+    for (int k = 1; k < steps; ++k) grid.push_back(from * std::exp(ratio * k));
+    grid.push_back(to);
+  };
+  grid.push_back(10e-9);
+  logarithmic(10e-9, 100e-9, uv_steps);
+  for (int i = 1; i < linear_points; ++i) grid.push_back((100.0 + i) * 1e-9);
+  logarithmic(2500e-9, 100e-6, log_steps);
+  logarithmic(100e-6, 1e-3, far_ir_steps);
+  return Eigen::Map<const Eigen::ArrayXd>(grid.data(), static_cast<Eigen::Index>(grid.size()));
 }
 
 Spectrum blackbody_exitance_spectrum(double temperature_K, double c2_m_K, const Eigen::ArrayXd& grid_m) {

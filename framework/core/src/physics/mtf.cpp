@@ -206,7 +206,9 @@ double diffusion_mtf(double frequency_per_m, double diffusion_rms_m) {
 
 double wavefront_error_mtf(double frequency_per_m, double wavelength_m, double f_number, double wfe_rms_waves) {
   const double x = std::abs(frequency_per_m) / diffraction_cutoff_frequency_per_m(wavelength_m, f_number);
-  if (x >= 1) return 0.0;
+  // Defined on [0, 1], where it ends at 1; beyond the cut-off the diffraction MTF it multiplies is 0, and the factor
+  // stays 1 (it was 0 there, so the budget's "other" components read 0 at Nyquist whenever Q > 2).
+  if (x >= 1) return 1.0;
   const double w = wfe_rms_waves / 0.18;
   return std::max(0.0, 1 - w * w * (1 - 4 * (x - 0.5) * (x - 0.5)));
 }

@@ -49,8 +49,11 @@ struct ResultDifference {
   double delta() const;     // (B − A) in the display unit
   double relative() const;  // (B − A) / |A| (NaN when A = 0 and B ≠ 0... infinite)
   bool same() const;        // equal bit for bit (or both NaN)
-  // |B − A| > tolerance × max(|A|, |B|), a NaN on one side only, or a result on one side only.
+  // |B − A| > tolerance × max(|A|, |B|, floor), a NaN on one side only, or a result on one side only. The floor is 1
+  // for a criterion's margin (achieved/required − 1: its scale is 1, and at a solved root it is 0 by construction,
+  // ~1e-15, so relative to itself any two roots differ by 100 %), else 0.
   bool exceeds(double rel_tolerance) const;
+  double scale_floor() const;
 };
 
 struct Comparison {

@@ -28,9 +28,10 @@ struct SweepAxis {
   double from = 0, to = 0;    // in `unit`
   std::size_t steps = 1;
   std::string unit;           // the unit the range is written in ("" for plain numbers)
-  double to_si = 1;           // value_si = value × to_si
+  double to_si = 1;           // value_si = value × to_si (units::to_si)
+  double from_si = 0, to_si_value = 0;  // the ends in SI, read from their text as a file's value is
   double value(std::size_t i) const;  // in `unit`; the last value is `to` exactly
-  double value_si(std::size_t i) const { return value(i) * to_si; }
+  double value_si(std::size_t i) const;  // units::to_si: the same bits as the value written in a file
 };
 
 // `--set` values: "from:to:steps" is a range (any ':' makes it one), anything else a fixed value.

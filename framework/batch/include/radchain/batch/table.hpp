@@ -24,6 +24,9 @@ struct TableLayout {
   std::string kind;                  // the job that makes the table: "catalogue", "sweep"
   std::vector<std::string> columns;
   std::vector<bool> numeric;         // per column: right-aligned in text, bare numbers in JSON
+  // Per column (or empty: none): significant digits a cell is shown with in text, where the cell itself holds the
+  // number to the last bit for CSV, JSON and shards (0: as the cell is).
+  std::vector<int> text_digits = {};
 };
 
 // Footer of a table (text: a last line; JSON: "summary"), computed from the rows, so that a merged table gets

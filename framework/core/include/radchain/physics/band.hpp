@@ -62,10 +62,11 @@ Spectrum normalised_to_peak(const Spectrum& spectrum);
 // R(λ) = η e λ/(hc) ∝ η λ, normalised to peak 1 (e.g. Janesick, Scientific CCDs (2001) §2.2).
 Spectrum per_watt_relative_response(const Spectrum& quantum_efficiency);
 
-// A grid for sampled Planck curves: 1 nm steps from 100 nm to 2500 nm (so it contains every integer-nm
-// node of the CIE and detector tables, where linear interpolation then adds nothing), then 2000
-// logarithmic steps to 100 µm. It misses < 4e-5 of a 2000 K blackbody's total (beyond 100 µm) and < 1e-6 of
-// a 6000 K one (both ends together).
+// A grid for sampled Planck curves, from the far UV to the far infrared, so that any band a chain integrates
+// lies inside it (a Planck curve is never 0 for want of a node): 1000 logarithmic steps from 10 nm to 100 nm,
+// 1 nm steps to 2500 nm (so it contains every integer-nm node of the CIE and detector tables, where linear
+// interpolation then adds nothing), 2000 logarithmic steps to 100 µm and 1500 more to 1 mm. It misses < 4e-8 of a
+// 2000 K blackbody's total (beyond 1 mm) and < 1e-9 of a 6000 K one (both ends together).
 Eigen::ArrayXd planck_grid_m();
 // Planck spectral exitance M_λ (W m^-2 m^-1) sampled on `grid_m`, with a stated c2 convention.
 Spectrum blackbody_exitance_spectrum(double temperature_K, double c2_m_K = constants::second_radiation_m_K,

@@ -86,16 +86,20 @@ inline double radiance_responsivity_e(double tdi_stages, double exposure_s, doub
 // Noise variance of one b×b binned pixel over M co-added exposures for a uniform scene (EMVA 1288 eqs. 5, 6, 18):
 //   temporal, one exposure:  S₁ + b² [N_tdi μ_I t + σ_d0² + σ_q²/K² + σ_other²]   (shot noise of signal and dark,
 //                            read noise of each of the b² native pixels once: charge-domain TDI reads once)
-//   spatial (repeats in every exposure, adds in amplitude over M): b² σ_DSNU² + s_g² S₁²/b²
-//                            (PRNU of the b² native pixels, each carrying S₁/b², independent)
-//   n² = M (S₁ + v_t) + M² (v_s + s_g² S₁²/b²)
+//   spatial (repeats in every exposure, adds in amplitude over M): b² σ_DSNU² + s_g² S₁²/(b² N_tdi)
+//                            (PRNU of the b² N_tdi different native pixels the sample sums: b² binned pixels, and
+//                            N_tdi TDI stages, each a different pixel row carrying S₁/(b² N_tdi) with a gain of its
+//                            own; independent gains of relative spread s_g (EMVA 1288 §2.4 defines s_g per pixel)
+//                            give the sum a relative spread s_g/√(b² N_tdi). Co-added frames read the same pixels,
+//                            so their PRNU adds in amplitude: the M² below.)
+//   n² = M (S₁ + v_t) + M² (v_s + s_g² S₁²/(b² N_tdi))
 // `signal1_e` is S₁ (binned pixel, one exposure); `floor_native_e2` is the native pixel's σ_d0² + σ_q²/K² +
 // σ_other² + N_tdi μ_I t (the variance at zero signal, dark shot noise included).
 inline double emva_uniform_scene_variance_e2(double signal1_e, double floor_native_e2, double dsnu_e, double prnu,
-                                             double binning, double exposures) {
+                                             double binning, double exposures, double tdi_stages = 1.0) {
   const double b2 = binning * binning;
   const double temporal = signal1_e + b2 * floor_native_e2;
-  const double spatial = b2 * dsnu_e * dsnu_e + prnu * prnu * signal1_e * signal1_e / b2;
+  const double spatial = b2 * dsnu_e * dsnu_e + prnu * prnu * signal1_e * signal1_e / (b2 * tdi_stages);
   return exposures * temporal + exposures * exposures * spatial;
 }
 

@@ -13,6 +13,7 @@
 #include "radchain/constants.hpp"
 #include "radchain/spectrum.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace radchain::physics {
@@ -22,15 +23,49 @@ namespace radchain::physics {
 inline const double ab_zero_f_nu_W_m2_Hz = std::pow(10.0, -0.4 * 48.60) * 1e-3;
 inline const double st_zero_f_lambda_W_m3 = std::pow(10.0, -0.4 * 21.10) * 1e7;
 
-// The AB and ST reference spectra (f_λ, W m⁻² m⁻¹) sampled on n points over [lo, hi] (log-spaced).
+// A log-spaced wavelength grid over [lo, hi] with `per_e_fold` points per factor e (at least 2 points in all), its
+// ends exactly lo and hi (exp(log(x)) may round).
+inline Eigen::ArrayXd log_wavelength_grid(double lo_m, double hi_m, double per_e_fold) {
+  const int n = std::max(2, static_cast<int>(std::ceil(std::log(hi_m / lo_m) * per_e_fold)) + 1);
+  Eigen::ArrayXd grid = Eigen::ArrayXd::LinSpaced(n, std::log(lo_m), std::log(hi_m)).exp();
+  grid(0) = lo_m, grid(n - 1) = hi_m;
+  return grid;
+}
+
+// The AB and ST reference spectra (f_λ, W m⁻² m⁻¹) sampled on n log-spaced points over [lo, hi]. The ST spectrum
+// is flat in f_λ but still sampled densely: a photon count weights it by λ/(hc), which varies across every segment
+// of a coarse bandpass table, and a 2-point constant would add no nodes, so the trapezoid would average the weight
+// only between the table's points (1.3e-3 off for the ST zero point through Bessell R; here ~1e-9).
 inline Spectrum ab_reference_spectrum(double lo_m, double hi_m, int n = 4001) {
   Eigen::ArrayXd grid = Eigen::ArrayXd::LinSpaced(n, std::log(lo_m), std::log(hi_m)).exp();
-  grid(0) = lo_m, grid(n - 1) = hi_m;  // exactly the limits (exp(log(x)) may round)
+  grid(0) = lo_m, grid(n - 1) = hi_m;
   return Spectrum::sampled(grid, [](double l) { return ab_zero_f_nu_W_m2_Hz * constants::speed_of_light_m_s / (l * l); },
                            "W m-2 m-1");
 }
-inline Spectrum st_reference_spectrum(double lo_m, double hi_m) {
-  return Spectrum::constant(st_zero_f_lambda_W_m3, "W m-2 m-1", lo_m, hi_m);
+inline Spectrum st_reference_spectrum(double lo_m, double hi_m, int n = 4001) {
+  Eigen::ArrayXd grid = Eigen::ArrayXd::LinSpaced(n, std::log(lo_m), std::log(hi_m)).exp();
+  grid(0) = lo_m, grid(n - 1) = hi_m;
+  return Spectrum::sampled(grid, [](double) { return st_zero_f_lambda_W_m3; }, "W m-2 m-1");
+}
+
+// An SED without a table of its own (flat in f_ν or in f_λ) is the shape of a whole source, not of the band that
+// normalises it: it spans every band a chain may integrate, from the far UV to the far infrared. 2000 log-spaced
+// points per factor e (relative spacing 5e-4: the trapezoid's error on λ⁻¹ is ~2e-8). Built once, shared.
+inline constexpr double untabulated_sed_min_wavelength_m = 10e-9, untabulated_sed_max_wavelength_m = 1e-3;
+inline const Spectrum& flat_f_nu_sed() {
+  static const Spectrum sed = [] {
+    const Eigen::ArrayXd grid = log_wavelength_grid(untabulated_sed_min_wavelength_m, untabulated_sed_max_wavelength_m, 2000);
+    return Spectrum::sampled(grid, [](double l) { return ab_zero_f_nu_W_m2_Hz * constants::speed_of_light_m_s / (l * l); },
+                             "W m-2 m-1");
+  }();
+  return sed;
+}
+inline const Spectrum& flat_f_lambda_sed() {
+  static const Spectrum sed = [] {
+    const Eigen::ArrayXd grid = log_wavelength_grid(untabulated_sed_min_wavelength_m, untabulated_sed_max_wavelength_m, 2000);
+    return Spectrum::sampled(grid, [](double) { return st_zero_f_lambda_W_m3; }, "W m-2 m-1");
+  }();
+  return sed;
 }
 
 // Photons s⁻¹ m⁻² of a spectral irradiance f_λ (W m⁻² m⁻¹) through the bandpass T over T's whole table.

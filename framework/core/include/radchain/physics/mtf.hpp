@@ -112,7 +112,8 @@ double linear_smear_mtf(double frequency_per_m, double smear_length_m);
 double diffusion_mtf(double frequency_per_m, double diffusion_rms_m);
 // Wavefront error W_rms (waves) as Shannon's aberration transfer factor on the diffraction MTF:
 // ATF(x) = 1 − (W_rms/0.18)² [1 − 4 (x − ½)²], x = ν/ν_c, clamped at 0 (R. R. Shannon, The Art and Science of
-// Optical Design (1997), the Hufnagel approximation; Fiete 2010 ch. 5). Valid for W_rms ≲ 0.18 waves.
+// Optical Design (1997), the Hufnagel approximation; Fiete 2010 ch. 5). Valid for W_rms ≲ 0.18 waves. 1 beyond the
+// cut-off (x ≥ 1), as at x = 1: the diffraction MTF it multiplies is 0 there.
 double wavefront_error_mtf(double frequency_per_m, double wavelength_m, double f_number, double wfe_rms_waves);
 // TDI synchronisation: N stages, each shifting the charge a fraction `mismatch` of a pixel pitch p away from the
 // image motion; the N sub-images add with shifts k·mismatch·p, so MTF = |sin(π N δ ν)/(N sin(π δ ν))|,
