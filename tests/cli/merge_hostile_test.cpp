@@ -94,3 +94,31 @@ TEST(MergeHostile, ASweepShardRepeatingAPointIsRefused) {
 }
 
 }  // namespace
+
+// A numeric cell that is not a number (a corrupted or hand-edited shard) is refused with its row and column; it
+// became a silent NaN in the merged table, exit 0. "nan" (a failed point, as radchain writes it) stays valid.
+namespace {
+using namespace radchain::test;
+
+TEST(MergeHostile, AnUnparsableNumericCellIsRefused) {
+  Scratch scratch;
+  const std::string text = real_shard(scratch);
+  // The first data row: "0,<aperture>,<magnitude>"; its last cell is the limiting magnitude.
+  const std::size_t row = text.find("\n0,") + 1;
+  const std::size_t cell = text.rfind(',', text.find('\n', row)) + 1;
+  const std::size_t end = text.find('\n', row);
+  for (const std::string bad : {"abc", "1e999", "0x10", "", "inf"}) {
+    std::string corrupted = text;
+    corrupted.replace(cell, end - cell, bad);
+    const CliResult r = merge_text(scratch, "bad.shard", corrupted);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.out << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("row 1: target.magnitude = \"" + bad + "\" is not a number"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  std::string failed_point = text;
+  failed_point.replace(cell, end - cell, "nan");
+  EXPECT_EQ(merge_text(scratch, "nan.shard", failed_point).exit_code, 0);
+}
+
+}  // namespace

@@ -197,6 +197,18 @@ TEST(Uncertainty, OutOfRangeSamplesAreCounted) {
   EXPECT_EQ(u.used + u.out_of_range + u.failed, 1000u);
 }
 
+// A distribution far wider than its input's range (τ ~ N(1, 1000) on (0, 1]: P(inside) = 4e-4) leaves no usable
+// sample: bad input, one line, exit 2, no table of NaN statistics (it exited 0 with every statistic NaN).
+TEST(Uncertainty, NoUsableSampleIsBadInput) {
+  Scratch scratch;
+  const CliResult r = run_cli(scratch, "uncertainty '" + sbv_file +
+                                           "' --vary 'optics.transmittance=normal(1, 1000)' --results target.magnitude --samples 200");
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("200 of 200 samples fell outside an input's accepted range, 0 remain"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
 TEST(UncertaintyCli, BadInputIsOneLineAndExit2) {
   Scratch scratch;
   const std::string sbv = "uncertainty '" + sbv_file + "' --results target.magnitude ";

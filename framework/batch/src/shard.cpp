@@ -164,6 +164,19 @@ struct ShardReader {
       throw fail(fmt::format("row {}: point \"{}\" is not a count", rows + 1, row.front()));
     }
     row.erase(row.begin());
+    // A numeric cell is a number as the job wrote it or "nan" (a failed point); a catalogue leaves a value it did
+    // not compute empty. Anything else (a corrupted or hand-edited shard) would become a silent NaN in the merge.
+    const std::string& types = fields.at("types");
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      const std::string& cell = row[c];
+      if (types[c] != 'n' || cell == "nan" || (cell.empty() && fields.at("kind") == "catalogue")) continue;
+      double value = 0;
+      const char* begin = cell.data() + (!cell.empty() && cell.front() == '+');  // a catalogue's signed delta
+      const auto [end, error] = std::from_chars(begin, cell.data() + cell.size(), value);
+      if (cell.empty() || error != std::errc() || end != cell.data() + cell.size() || !std::isfinite(value))
+        throw fail(fmt::format("row {}: {} = \"{}\" is not a number (a finite decimal, or nan for a failed point)",
+                               rows + 1, columns[c], cell));
+    }
     // Rows come in point order: the next point of this shard, or (a catalogue: a file's rows) the current point
     // again. A sweep has one row per point: a repeated one would write more records than its header promises.
     const bool same = fields.at("kind") == "catalogue" && next_index > 0 && row_point == points[next_index - 1];

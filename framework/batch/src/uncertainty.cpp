@@ -192,6 +192,13 @@ Uncertainty run_uncertainty(const UncertaintyOptions& options) {
     }
   }
   u.used = used.size();
+  // Statistics of fewer than 2 samples are NaN: a table of them is no answer. Every draw fell outside an input's
+  // accepted range (a distribution centred past it, or far wider than it) or failed: bad input, said once.
+  if (used.size() < 2 && u.failed == 0)
+    throw InputError(SourceLocation{"--vary", 0, 0}, "", "",
+                     fmt::format("{} of {} samples fell outside an input's accepted range, {} remain: no statistics; "
+                                 "narrow the distributions or move them inside the ranges (`radchain describe`)",
+                                 u.out_of_range, n, used.size()));
   const double m = static_cast<double>(used.size());
   std::vector<double> input_mean(ni, 0), input_sd(ni, 0);
   for (std::size_t j = 0; j < ni; ++j) {

@@ -349,6 +349,14 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
       if (!std::isfinite(spec.lo) || !std::isfinite(spec.hi) || !(spec.hi > spec.lo))
         throw InputError(entry.where, "[[solve]]", spec.unknown,
                          "needs a bracket = [low, high] with low < high (the parameter's range is open): e.g. bracket = [\"1 cm\", \"2 m\"]");
+      // One unknown, one [[solve]]: a second would overwrite the first's root, which would then be reported as
+      // converged at a margin that no longer holds. Several criteria for one unknown go in one entry's list.
+      for (const SolveSpec& earlier : chain.solves)
+        if (earlier.unknown == spec.unknown)
+          throw InputError(unknown->where, "[[solve]]", "unknown = " + unknown->as_toml(),
+                           fmt::format("is solved already by the [[solve]] at {}: give one entry, with criterion = [\"{}\", "
+                                       "...] to keep the criterion that binds",
+                                       earlier.where.str(), earlier.criteria.empty() ? "" : earlier.criteria.front()));
       solved_units.emplace_back(spec.unknown, display_unit_of_example(pspec));
       chain.solves.push_back(spec);
     }
