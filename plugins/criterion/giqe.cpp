@@ -23,6 +23,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -160,18 +161,11 @@ class Giqe final : public Stage {
     across_budget.tdi_mismatch = 0;
     // The MTF in cycles per sample u (ν = u/p).
     auto system = [&](double u) { return physics::mtf_components(budget, u / p).system(); };
-    auto across = [&](double u) { return physics::mtf_components(across_budget, u / p).system(); };
-    const double cutoff_samples = p * physics::diffraction_cutoff_frequency_per_m(lambda, n);
-    constexpr int panels = 1000;
-    double rer = params_.has("rer") ? *rer_ : 0.0, rer_across = 0, rer_along = 0;
-    if (!params_.has("rer")) {
-      rer_across = physics::relative_edge_response(across, cutoff_samples, panels);
-      rer_along = physics::relative_edge_response(system, cutoff_samples, panels);
+    const EdgeTerms& edge = edge_terms(budget, across_budget);
+    double rer = params_.has("rer") ? *rer_ : 0.0;
+    const double rer_across = edge.rer_across, rer_along = edge.rer_along, overshoot = edge.overshoot;
+    if (!params_.has("rer"))
       rer = giqe4_ ? std::sqrt(rer_across * rer_along) : physics::giqe5_weighted_rer(rer_across, rer_along);
-    }
-    const double overshoot = giqe4_ ? std::sqrt(physics::edge_overshoot(across, cutoff_samples, panels) *
-                                                physics::edge_overshoot(system, cutoff_samples, panels))
-                                    : 0.0;
     const double snr = params_.has("snr") ? *snr_ : c.results.value(*detector_snr_);
     const double niirs = giqe4_ ? physics::giqe4_niirs(gsd, rer, overshoot, *noise_gain_, snr)
                                 : physics::giqe5_niirs(gsd, rer, snr);
@@ -216,6 +210,43 @@ class Giqe final : public Stage {
   }
 
  private:
+  // The edge response's RER (across and along track) and, for GIQE-4, its overshoot: integrals of the MTF budget
+  // over 1000 panels each, ~10⁴ evaluations of every component. They depend on the budget alone, so they are
+  // remembered for the last one: a sweep over reflectance, sun or look angle (smear within the line time) leaves
+  // it unchanged and costs the GIQE's closed form only.
+  struct EdgeTerms {
+    double rer_across = 0, rer_along = 0, overshoot = 0;
+  };
+  static std::array<double, 12> budget_key(const physics::MtfBudget& b) {
+    return {b.wavelength_m, b.f_number,   b.obscuration,  b.pitch_m,        b.jitter_rms_m,   b.smear_m,
+            b.diffusion_rms_m, b.wavefront_error_waves, b.tdi_stages, b.tdi_mismatch, b.focal_length_m, b.fried_parameter_m};
+  }
+  const EdgeTerms& edge_terms(const physics::MtfBudget& budget, const physics::MtfBudget& across_budget) {
+    const std::array<double, 12> key = budget_key(budget);
+    if (edge_valid_ && key == edge_key_) return edge_;
+    const double p = budget.pitch_m;
+    auto system = [&](double u) { return physics::mtf_components(budget, u / p).system(); };
+    auto across = [&](double u) { return physics::mtf_components(across_budget, u / p).system(); };
+    const double cutoff_samples = p * physics::diffraction_cutoff_frequency_per_m(budget.wavelength_m, budget.f_number);
+    constexpr int panels = 1000;
+    edge_valid_ = false;  // (a throw below leaves no stale value under the new key)
+    if (!params_.has("rer")) {
+      edge_.rer_across = physics::relative_edge_response(across, cutoff_samples, panels);
+      edge_.rer_along = physics::relative_edge_response(system, cutoff_samples, panels);
+    } else {
+      edge_.rer_across = edge_.rer_along = 0;
+    }
+    edge_.overshoot = giqe4_ ? std::sqrt(physics::edge_overshoot(across, cutoff_samples, panels) *
+                                         physics::edge_overshoot(system, cutoff_samples, panels))
+                             : 0.0;
+    edge_key_ = key;
+    edge_valid_ = true;
+    return edge_;
+  }
+  EdgeTerms edge_;
+  std::array<double, 12> edge_key_{};
+  bool edge_valid_ = false;
+
   const Params& params_;
   std::optional<ResultId> detector_tdi_, integration_time_, ground_speed_;
   const double *required_, *wavelength_, *jitter_, *smear_, *diffusion_, *wfe_, *tdi_stages_, *tdi_mismatch_,

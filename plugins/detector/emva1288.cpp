@@ -323,10 +323,8 @@ class Emva1288 final : public Stage {
     const double n = *window_;
     const double radius_m = circle_photometry_ ? *aperture_radius_ * f : 0.0;
     if (fwhm > 0) {
-      neff = physics::gaussian_noise_equivalent_area_px(fwhm / binned);
-      peak_fraction = physics::gaussian_peak_pixel_fraction(fwhm / pitch);
-      ensquared = circle_photometry_ ? physics::gaussian_encircled_energy(radius_m, fwhm)
-                                     : physics::gaussian_ensquared_energy(n * binned, fwhm);
+      const GaussianIntegrals& g = gaussian_.of(fwhm, binned, pitch, circle_photometry_ ? -radius_m : n * binned);
+      neff = g.neff, peak_fraction = g.peak_fraction, ensquared = g.ensquared;
     } else if (airy) {
       const double lambda = a.value(*psf_wavelength_), fn = a.value(*f_number_), eps = opt(obscuration_);
       peak_fraction = physics::airy_ensquared_energy(pitch, lambda, fn, eps);
@@ -627,6 +625,30 @@ class Emva1288 final : public Stage {
     return airy_neff_.of(pitch_m, wavelength_m, f_number, obscuration);
   }
   AiryNeff airy_neff_, native_airy_neff_;  // at the binned pitch (photometry) and the native one (PRNU)
+  // The pixel-sampled Gaussian PSF's integrals, remembered for the last PSF and sampling: a sweep over exposure, sky
+  // or airmass does not change them, and their erf sums were two thirds of such a point's cost. `aperture` is the
+  // window's side, or minus the circle's radius.
+  struct GaussianIntegrals {
+    double neff = 0, peak_fraction = 0, ensquared = 0;
+  };
+  struct GaussianMemo {
+    const GaussianIntegrals& of(double fwhm_m, double binned_m, double pitch_m, double aperture_m) {
+      const std::array<double, 4> key{fwhm_m, binned_m, pitch_m, aperture_m};
+      if (key != key_ || !valid_) {
+        value_.neff = physics::gaussian_noise_equivalent_area_px(fwhm_m / binned_m);
+        value_.peak_fraction = physics::gaussian_peak_pixel_fraction(fwhm_m / pitch_m);
+        value_.ensquared = aperture_m < 0 ? physics::gaussian_encircled_energy(-aperture_m, fwhm_m)
+                                          : physics::gaussian_ensquared_energy(aperture_m, fwhm_m);
+        key_ = key;
+        valid_ = true;
+      }
+      return value_;
+    }
+    std::array<double, 4> key_{};
+    bool valid_ = false;
+    GaussianIntegrals value_;
+  };
+  GaussianMemo gaussian_;
 
   const double *qe_, *time_, *gain_, *dark_noise_, *saturation_, *dark_current_, *prnu_, *dsnu_, *other_, *bits_,
       *binning_, *exposures_, *tdi_, *pitch_, *window_, *ensquared_;

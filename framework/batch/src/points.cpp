@@ -67,6 +67,9 @@ class PointsEvaluator::Worker {
       for (const auto& s : chain_.solves) column.solved = column.solved || s.unknown == name;
       columns_.push_back(column);
     }
+    std::vector<ResultId> asked;
+    for (const Column& c : columns_) asked.push_back(c.id);
+    chain_.focus(asked);
     lanes_ = chain_.solves.size() <= 1 && (chain_.solves.empty() || chain_.lanes_can_solve());
     for (const ParameterRef& p : parameters_) lanes_ = lanes_ && !p.spectral();
   }

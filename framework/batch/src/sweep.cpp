@@ -361,12 +361,25 @@ SweepWorker::SweepWorker(const Sweep& sweep)
     for (const auto& s : chain_.solves) solved = solved || s.unknown == name;
     columns_.push_back(Column{id, chain_.results().info(id).display_factor, solved});
   }
+  std::vector<ResultId> asked;
+  for (const Column& c : columns_) asked.push_back(c.id);
+  chain_.focus(asked);
   index_.resize(axes_.size());
+  axis_values_.resize(axes_.size());
   lanes_ = chain_.solves.size() <= 1 && (chain_.solves.empty() || chain_.lanes_can_solve());
   for (const ParameterRef& a : axes_) lanes_ = lanes_ && !a.spectral();
   // Only solved values read (limiting magnitudes): the evaluation at the roots needs no noise breakdown.
   if (std::all_of(columns_.begin(), columns_.end(), [](const Column& c) { return c.solved; }))
     lane_outcome_.final_detail = Detail::essential;
+}
+
+const SweepWorker::AxisValue& SweepWorker::axis_value(std::size_t axis) {
+  AxisValue& v = axis_values_[axis];
+  if (v.step != index_[axis]) {
+    const SweepAxis& a = sweep_.axes()[axis];
+    v = AxisValue{index_[axis], a.value(index_[axis]), a.value_si(index_[axis])};
+  }
+  return v;
 }
 
 void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, double* out, char* ok) {
@@ -395,9 +408,9 @@ void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, d
       }
     }  // (else a short group's unused lane: index_ still holds its last point)
     for (std::size_t a = 0; a < axes.size(); ++a) {
-      const double v = axes[a].value(index_[a]);
-      values[a](lane) = axes[a].value_si(index_[a]);
-      if (static_cast<std::size_t>(lane) < count) out[k * n_columns + a] = v;
+      const AxisValue& v = axis_value(a);
+      values[a](lane) = v.value_si;
+      if (static_cast<std::size_t>(lane) < count) out[k * n_columns + a] = v.value;
     }
   }
   chain_.clear_lanes();
@@ -436,9 +449,9 @@ bool SweepWorker::evaluate(std::size_t point, double* out) {
     point /= axes[a].steps;
   }
   for (std::size_t a = 0; a < axes.size(); ++a) {
-    const double v_si = axes[a].value_si(index_[a]);
-    out[a] = axes[a].value(index_[a]);
-    if (axes_[a].value() != v_si) chain_.set(axes_[a], v_si);
+    const AxisValue& v = axis_value(a);
+    out[a] = v.value;
+    if (axes_[a].value() != v.value_si) chain_.set(axes_[a], v.value_si);
   }
   // Every point starts from the file's values of the solved unknowns (the result must not depend on the
   // points this thread ran before). Only what moves is marked for re-evaluation.

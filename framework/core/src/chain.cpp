@@ -106,6 +106,7 @@ void Chain::evaluate_from(std::size_t first, Detail detail) {
   light_.up_path_scale = start.up_path;
   for (std::size_t k = first; k < stages.size(); ++k) {
     scales_before_[k] = Scales{light_.illumination_scale, light_.signal.scale, light_.background.scale, light_.up_path_scale};
+    if (skips(k)) continue;
     StageSlot& slot = stages[k];
     slot.scalar_warnings.clear();
     Context context(results_, light_, slot.section, slot.plugin, detail, nullptr, nullptr, &slot.scalar_warnings);
@@ -146,6 +147,7 @@ void Chain::evaluate_lanes(Detail detail) {
                               constant_lanes(start.background), constant_lanes(start.up_path)};
   }
   for (std::size_t k = first; k < stages.size(); ++k) {
+    if (skips(k)) continue;
     LaneContext context(lane_results_, light_, lane_scales_, lane_parameters_, detail == Detail::full);
     bool by_lanes = false;
     run_stage(stages[k], sensor_file, [&] { by_lanes = stages[k].stage->evaluate_lanes(context); });
@@ -194,6 +196,37 @@ void Chain::evaluate_lane_by_lane(StageSlot& slot, Detail detail) {
     throw;
   }
   restore();
+}
+
+void Chain::focus(const std::vector<ResultId>& wanted) {
+  std::vector<char> skip;
+  if (!wanted.empty()) {
+    evaluate(Detail::essential);  // every stage's declarations known (a result's stage is the one declaring it)
+    std::vector<ResultId> needed = wanted;
+    for (const ResolvedSolve& r : resolved_) needed.insert(needed.end(), r.margins.begin(), r.margins.end());
+    std::vector<char> publishes(stages.size(), 0);
+    std::size_t last = 0;
+    for (ResultId id : needed) {
+      std::size_t k = 0;
+      while (k < stages.size() && std::none_of(stages[k].memo.declarations.begin(), stages[k].memo.declarations.end(),
+                                               [&](const StageMemo::Declared& d) { return d.id == id; }))
+        ++k;
+      if (k == stages.size()) {  // echoed or unknown to every stage: nothing can be left out safely
+        last = stages.size();
+        break;
+      }
+      publishes[k] = 1;
+      last = std::max(last, k);
+    }
+    // No criterion reads another's results (a criterion reads the chain's physics, never a verdict), so a
+    // criterion nobody asked for can be left out wherever it stands.
+    skip.assign(stages.size(), 0);
+    for (std::size_t k = 0; k < stages.size(); ++k)
+      skip[k] = last < stages.size() && (k > last || (!publishes[k] && stages[k].section.starts_with("criteria.")));
+  }
+  for (std::size_t k = 0; k < stages.size(); ++k)
+    if (skips(k) && !(k < skip.size() && skip[k])) scalar_from_ = std::min(scalar_from_, k);
+  skip_ = std::move(skip);
 }
 
 void Chain::evaluate(Detail detail) {
@@ -267,6 +300,7 @@ double Chain::result(const std::string& name) const {
 
 
 Report Chain::run() {
+  skip_.clear();  // a report has every result
   results_.clear_values();
   scalar_from_ = 0;  // every result again (the spectral phase only if something spectral changed)
   evaluate();

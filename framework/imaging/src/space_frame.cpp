@@ -111,9 +111,10 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
   if (!detail::publishes(chain, vocabulary::detector_signal_electrons) ||
       !detail::publishes(chain, vocabulary::detector_noise_electrons)) {
     const StageSlot* det = detail::find_slot(chain, "detector");
-    refuse(file, "detector", std::string("a frame needs a point-target detector publishing signal and noise electrons (ccd_frame); ") +
-                                 "this sensor has " + (det ? "\"" + det->plugin + "\"" : "none") +
-                                 " (a pushbroom sensor renders an Earth scene instead)");
+    refuse(file, "detector",
+           fmt::format("a frame needs a point-target detector publishing signal and noise electrons (ccd_frame); "
+                       "this sensor has {} (a pushbroom sensor renders an Earth scene instead)",
+                       det ? "\"" + det->plugin + "\"" : std::string("none")));
   }
   // The frame checks measure n×n windows; a circular aperture would be compared with the wrong pixels.
   if (result(report, vocabulary::detector_aperture_radius_pixels))

@@ -39,6 +39,22 @@ double brute_force_neff(double fwhm_px, double offset_x = 0, double offset_y = 0
   return 1.0 / sum_sq;
 }
 
+// The sum takes each column edge's erf once (columns share edges and are symmetric): the textbook sum of
+// [Φ(i + ½) − Φ(i − ½)]² over every column, two erfs each, to rounding, over FWHMs from 0.05 to 40 pixels.
+TEST(PhysicsEmva1288, NoiseEquivalentAreaEqualsTheColumnByColumnSum) {
+  for (int k = 0; k <= 200; ++k) {
+    const double fwhm = 0.05 * std::pow(800.0, k / 200.0);
+    const double sigma = fwhm / (2 * std::sqrt(2 * std::numbers::ln2));
+    const int half = static_cast<int>(std::ceil(8 * sigma)) + 1;
+    double sum = 0;
+    for (int i = -half; i <= half; ++i) {
+      const double g = gaussian_pixel_fraction(i, sigma);
+      sum += g * g;
+    }
+    EXPECT_NEAR(gaussian_noise_equivalent_area_px(fwhm) * sum * sum, 1.0, 1e-13) << fwhm;
+  }
+}
+
 TEST(PhysicsEmva1288, NoiseEquivalentAreaAgainstNumericalPsfIntegration) {
   for (double fwhm : {0.8, 2.0, 4.15})
     EXPECT_NEAR(gaussian_noise_equivalent_area_px(fwhm) / brute_force_neff(fwhm), 1.0, 2e-4) << fwhm;

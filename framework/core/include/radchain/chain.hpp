@@ -196,6 +196,12 @@ class Chain {
   // Every result again (the spectral phase only where something spectral changed) + solves + expectations +
   // tables.
   Report run();
+  // Work only for these results and the [[solve]] margins: a stage after the last one that publishes any of them,
+  // and a criterion that publishes none of them, is not evaluated (a sweep of detector.snr integrates no GIQE
+  // criterion's MTF budget). The skipped stages' results are then stale; focus({}) (and run()) evaluates every
+  // stage again, re-running the ones that were skipped.
+  void focus(const std::vector<ResultId>& wanted);
+  bool skips(std::size_t stage) const { return stage < skip_.size() && skip_[stage]; }
   // One [[table]]: per value, the parameter set, solve_all(), the columns read; then the parameter and the solved
   // unknowns are put back as they were and the chain re-evaluated.
   TableOutcome tabulate(const TableSpec& table);
@@ -269,6 +275,7 @@ class Chain {
   std::size_t spectral_from_ = 0;      // first stage whose prepare() must re-run (stages.size(): none)
   std::vector<const double*> read_spectrally_;  // scalar parameters a later spectral phase depends on (find_spectral_reads)
   std::size_t scalar_from_ = 0;        // first stage whose evaluate() must re-run
+  std::vector<char> skip_;             // per stage: not evaluated (focus); empty: none
   std::size_t essential_from_ = SIZE_MAX;  // first stage last evaluated with Detail::essential
   std::uint64_t scalar_version_ = 0;       // counts scalar evaluations (lanes copy their results when it moves)
   // Lanes: the varying parameters (with their stages), each result and the light's scalars per lane.

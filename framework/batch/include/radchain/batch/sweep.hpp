@@ -122,6 +122,14 @@ class SweepWorker {
   std::vector<Column> columns_;
   std::vector<SolveOutcome> outcomes_;
   std::vector<std::size_t> index_;
+  // Each axis's value at the step it had last (as written and in SI): an outer axis keeps its step for many points,
+  // and the SI value is read from text (units::to_si), the file's rule.
+  struct AxisValue {
+    std::size_t step = SIZE_MAX;
+    double value = 0, value_si = 0;
+  };
+  std::vector<AxisValue> axis_values_;
+  const AxisValue& axis_value(std::size_t axis);  // at index_[axis]
   std::vector<Lanes> lane_values_;  // each axis's value per lane (kept: no allocation per group)
   std::string failure_;
   bool lanes_ = false;  // evaluate_group() in lanes

@@ -43,13 +43,18 @@ inline double gaussian_pixel_fraction(int i, double sigma_px, double offset_px =
 
 // n_eff = 1 / Σ f_ij² for a Gaussian PSF of FWHM (pixels) sampled by square pixels, centred on a pixel
 // (separable: Σ f_ij² = (Σ_i g_i²)²). Tends to 4π σ² = 2.266 FWHM² for FWHM ≫ 1 and to 1 for FWHM → 0.
+// The columns are symmetric (g_−i = g_i) and share their edges, so each edge's erf is taken once: half+1 of them.
 inline double gaussian_noise_equivalent_area_px(double fwhm_px) {
   const double sigma = fwhm_px / (2.0 * std::sqrt(2.0 * std::numbers::ln2));
   const int half = static_cast<int>(std::ceil(8.0 * sigma)) + 1;
-  double sum = 0.0;
-  for (int i = -half; i <= half; ++i) {
-    const double g = gaussian_pixel_fraction(i, sigma);
-    sum += g * g;
+  const double s = sigma * std::numbers::sqrt2;
+  double inner = std::erf(0.5 / s);  // erf at the column's inner edge, i − ½ (for i = 0: g_0 = erf(½/s))
+  double sum = inner * inner;
+  for (int i = 1; i <= half; ++i) {
+    const double outer = std::erf((i + 0.5) / s);
+    const double g = 0.5 * (outer - inner);
+    sum += 2.0 * g * g;
+    inner = outer;
   }
   return 1.0 / (sum * sum);
 }
