@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 15 item 5: a catalogue of 1,000 sensor files, radchain against what a Python user would otherwise write —
+"""A catalogue of 1,000 sensor files, radchain against what a Python user would otherwise write —
 a loop of tomllib + numpy over the same files, measured in the same run.
 
     /usr/bin/python3 bench/catalogue_python.py [path/to/radchain]     # default out/release/radchain

@@ -84,7 +84,7 @@ def vectorised(apertures):
 
 
 def vectorised_grid(apertures, qes, times):
-    """The headline grid of issue 15: aperture × QE × exposure, the closed form broadcast over the three axes (the
+    """The headline grid: aperture × QE × exposure, the closed form broadcast over the three axes (the
     dark electrons grow with the exposure, so the signal at threshold does too)."""
     d, qe, t = apertures[:, None, None], qes[None, :, None], times[None, None, :]
     t2 = THRESHOLD**2

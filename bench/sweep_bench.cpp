@@ -130,7 +130,7 @@ SweepOptions million_apertures() {
   return options;
 }
 
-// The physical reference of issue 15: what a C++ programmer would write by hand for this one chain — Pan 2010
+// The physical reference: what a C++ programmer would write by hand for this one chain — Pan 2010
 // eq. (11) in closed form over the apertures, with the chain's own photon integral and noise floor taken from one
 // run (so only the per-point arithmetic is timed, as numpy_reference.py's vectorised() does). One core.
 void BM_MillionLimitingMagnitudes_HandWrittenLoop(benchmark::State& state) {
@@ -230,7 +230,7 @@ void BM_MillionSolves_Lanes_AllCores(benchmark::State& state) {
 }
 BENCHMARK(BM_MillionSolves_Lanes_AllCores)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 
-// Issue 15's headline task: 10⁶ limiting magnitudes over a 3-axis grid, aperture × QE × exposure (100 each), what
+// The headline benchmark: 10⁶ limiting magnitudes over a 3-axis grid, aperture × QE × exposure (100 each), what
 // `radchain sweep --set optics.aperture=15cm:30cm:100 --set detector.qe=0.2:0.8:100 --set
 // detector.integration_time=0.1s:2s:100` computes; bench/numpy_reference.py times numpy's closed form of the same grid.
 SweepOptions million_grid() {

@@ -1,4 +1,4 @@
-// Issue 17 item 4: 10^5 Monte-Carlo samples of the SBV, a limiting-magnitude solve at each, on all cores (target
+// 10^5 Monte-Carlo samples of the SBV, a limiting-magnitude solve at each, on all cores (target
 // ≤ 1 s on 2 cores). Three inputs varied (transmittance, read noise, QE), as in docs/budget.md.
 #include "radchain/batch/uncertainty.hpp"
 

@@ -4,6 +4,7 @@
 // Exit codes: 0 ok, 1 a failed check ([expected], a solve, a compare tolerance), 2 bad input (one line on
 // stderr), 3 an internal error.
 #include "commands.hpp"
+#include "terminal.hpp"
 #include "radchain/atomic_file.hpp"
 #include "radchain/error.hpp"
 #include "radchain/plugin_host.hpp"
@@ -21,12 +22,31 @@
 namespace {
 using namespace radchain;
 
-// SIGINT/SIGTERM: remove every output not yet complete (its temporary), say so, and die of the signal.
+// Every signal whose default action ends the process and that a program may catch (SIGKILL and SIGSTOP cannot be;
+// SIGXFSZ is left to make the write fail, which the output reports; SIGPIPE ends a pipeline quietly).
+struct StopSignal {
+  int number;
+  const char* message;  // written from the handler: a literal (async-signal-safe)
+};
+constexpr StopSignal stop_signals[] = {
+    {SIGINT, "radchain: interrupted (SIGINT); no output file was written\n"},
+    {SIGTERM, "radchain: terminated (SIGTERM); no output file was written\n"},
+    {SIGHUP, "radchain: hung up (SIGHUP); no output file was written\n"},
+    {SIGQUIT, "radchain: quit (SIGQUIT); no output file was written\n"},
+    {SIGUSR1, "radchain: stopped by SIGUSR1; no output file was written\n"},
+    {SIGUSR2, "radchain: stopped by SIGUSR2; no output file was written\n"},
+    {SIGALRM, "radchain: stopped by SIGALRM; no output file was written\n"},
+    {SIGVTALRM, "radchain: stopped by SIGVTALRM; no output file was written\n"},
+    {SIGXCPU, "radchain: CPU time limit reached (SIGXCPU); no output file was written\n"},
+};
+
+// Remove every output not yet complete (its temporary), say so, and die of the signal.
 extern "C" void stop_on_signal(int signal) {
   AtomicFile::remove_pending();
-  const char* message = signal == SIGINT ? "radchain: interrupted (SIGINT); no output file was written\n"
-                                         : "radchain: terminated (SIGTERM); no output file was written\n";
-  [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, message, std::strlen(message));
+  for (const StopSignal& s : stop_signals) {
+    if (s.number != signal) continue;
+    [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, s.message, std::strlen(s.message));
+  }
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }
@@ -35,7 +55,12 @@ void stop_cleanly_on_signals() {
   struct sigaction action {};
   action.sa_handler = stop_on_signal;
   sigemptyset(&action.sa_mask);
-  for (int signal : {SIGINT, SIGTERM}) sigaction(signal, &action, nullptr);
+  for (const StopSignal& s : stop_signals) {
+    struct sigaction previous {};
+    // A signal the caller ignores (nohup's SIGHUP) stays ignored.
+    if (sigaction(s.number, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;
+    sigaction(s.number, &action, nullptr);
+  }
 }
 
 int dispatch_checked(int code) {
@@ -63,6 +88,7 @@ void add_validate_options(CLI::App* cmd, cli::ValidateCommand& validate) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  cli::escape_control_characters_on_terminals();
   CLI::App app{"radchain — end-to-end radiometry of electro-optical sensors"};
   app.require_subcommand(1);
   app.set_version_flag("--version", fmt::format("radchain {} (plugin ABI {})", framework_version, plugin_abi_version),
@@ -137,10 +163,10 @@ int main(int argc, char** argv) {
   uncertainty_cmd->add_option("--results", uncertainty.results, "results (comma-separated), e.g. target.magnitude")
       ->delimiter(',')
       ->required();
-  uncertainty_cmd->add_option("--samples", uncertainty.samples, "Monte Carlo samples (default 1000)");
+  cli::add_samples(uncertainty_cmd, uncertainty.samples, "Monte Carlo samples (default 1000)");
   uncertainty_cmd->add_option("--plot", uncertainty.plot, "draw each result's histogram with its 5/50/95 % points to this PNG (gnuplot)");
   cli::add_seed(uncertainty_cmd, uncertainty.seed);
-  uncertainty_cmd->add_option("--threads", uncertainty.threads, "threads to use (default: all cores; same output for any count)");
+  cli::add_threads(uncertainty_cmd, uncertainty.threads, "threads to use (default: all cores; same output for any count)");
   cli::add_output(uncertainty_cmd, uncertainty.output, "text (default), csv or json");
   cli::add_no_solve(uncertainty_cmd, uncertainty.sensor.no_solve);
   cli::add_solver(uncertainty_cmd, uncertainty.sensor.solver);
@@ -206,7 +232,7 @@ int main(int argc, char** argv) {
     std::cerr << "radchain: internal error: " << error.what() << "\n";
     return 3;
   } catch (...) {
-    // A plugin may throw anything; that must not abort the process (issue 18).
+    // A plugin may throw anything; that must not abort the process.
     std::cerr << "radchain: internal error: an exception that is not a std::exception (thrown by a plugin?)\n";
     return 3;
   }

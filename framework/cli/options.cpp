@@ -29,10 +29,19 @@ void add_output(CLI::App* command, Output& output, const std::string& formats) {
   command->add_option("--format", output.format, formats);
 }
 
+// A count is never negative: CLI11 would read "-1" into a std::size_t as 2⁶⁴ − 1.
+void add_threads(CLI::App* command, std::size_t& threads, const std::string& description) {
+  command->add_option("--threads", threads, description)->check(CLI::Range(std::size_t{0}, max_threads));
+}
+
+void add_samples(CLI::App* command, std::size_t& samples, const std::string& description) {
+  command->add_option("--samples", samples, description)->check(CLI::NonNegativeNumber);
+}
+
 void add_batch(CLI::App* command, Batch& batch) {
   command->add_option("--shard", batch.shard, "run part k of n of the job (k/n) and write a shard file for `radchain merge`");
   command->add_option("--shard-order", batch.shard_order, "how points are dealt to shards: block (contiguous) or round-robin");
-  command->add_option("--threads", batch.threads, "threads to use (default: all cores)");
+  add_threads(command, batch.threads, "threads to use (default: all cores)");
 }
 
 void add_seed(CLI::App* command, std::uint64_t& seed) {

@@ -138,6 +138,10 @@ void add_no_solve(CLI::App* command, bool& no_solve);
 void add_solver(CLI::App* command, std::string& solver);
 void add_output(CLI::App* command, Output& output, const std::string& formats);
 void add_batch(CLI::App* command, Batch& batch);
+// More threads than this is a typo, not a machine (each thread loads a chain of its own).
+inline constexpr std::size_t max_threads = 4096;
+void add_threads(CLI::App* command, std::size_t& threads, const std::string& description);
+void add_samples(CLI::App* command, std::size_t& samples, const std::string& description);
 void add_seed(CLI::App* command, std::uint64_t& seed);
 
 }  // namespace radchain::cli

@@ -48,12 +48,9 @@ void warn_about_solved_overrides(const std::vector<SolveSpec>& solves, const std
 
 Chain load_sensor_of(const SensorArgs& args) {
   const std::vector<Override> overrides = parse_overrides(args.sets);
-  Chain chain = load_sensor(args.sensor, overrides);
+  Chain chain = load_sensor(args.sensor, overrides, args.no_solve ? Solving::forward_only : Solving::as_written);
   chain.solver = args.solver == "root" ? SolverChoice::root : SolverChoice::automatic;
-  if (args.no_solve)
-    chain.solves.clear();
-  else
-    warn_about_solved_overrides(chain.solves, overrides, std::cerr);
+  warn_about_solved_overrides(chain.solves, overrides, std::cerr);  // (none left when forward only)
   return chain;
 }
 

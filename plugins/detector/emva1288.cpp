@@ -29,7 +29,7 @@
 // included) is counted by étendue per native pixel, like an extended scene below:
 //   B = t p² ∫ E'_λ η(λ) λ/(hc) dλ  = t A τ Ω_pix ∫ L_λ η λ/(hc) dλ   (A_pixel Ω = A_pupil IFOV²)
 // for a flat-f_ν sky of m AB mag/arcsec² this is t A τ Ω_pix[arcsec²] 10^{-0.4 m} ∫ f_ν,AB η/(hλ) dλ (SMTN-002).
-// MOVING TARGETS (issue 13 item 7; physics/streak.hpp): a target crossing the field at `target_rate` ω (relative
+// MOVING TARGETS (physics/streak.hpp): a target crossing the field at `target_rate` ω (relative
 // to the stars) streaks over L = ω t f' per exposure under sidereal tracking (`tracking = "sidereal"`); under
 // rate tracking the target is a point and the stars streak by L. PSF-weighted photometry of the streak is the
 // matched filter along it: n_eff = 1/Σ f_ij² of the Gaussian PSF ⊗ the segment on the (binned) pixel grid, which
@@ -39,7 +39,7 @@
 // f_peak S_img,1 + N_tdi (B_native + μ_I t) (f_peak: the PSF's fraction in the pixel it is centred on), over
 // min(μ_e.sat, (2^bits − 1)/K), is detector.peak_pixel_fill; the criterion "unsaturated" fails when it exceeds 1.
 //
-// EXTENDED SCENES (issue 14, item 3: Earth-observation line, TDI and frame cameras). When the optics deliver a
+// EXTENDED SCENES (Earth-observation line, TDI and frame cameras). When the optics deliver a
 // focal-plane irradiance E'_λ (a scene radiance through a telescope with a focal length: E' = π L τ (1−ε²)/(4N²)),
 // one native pixel counts, per exposure (line time or frame time t; N_tdi stages summed in the charge domain),
 //   μ_e = N_tdi t p² ∫ E'_λ η(λ) λ/(hc) dλ         = the étendue count A_pixel Ω τ ∫ L_λ η λ/(hc) dλ
@@ -423,7 +423,7 @@ class Emva1288 final : public Stage {
   }
 
  private:
-  // ---- extended scenes (issue 14, item 3) ----
+  // ---- extended scenes ----
   void prepare_extended(Context& c, double lo, double hi, const Spectrum* qe_curve) {
     for (const char* key : {"window_pixels", "ensquared_energy", "photometry", "aperture_radius", "jitter"})
       if (params_.given(key)) params_.reject(key, "is used only for a point image (the target here is an extended scene)");

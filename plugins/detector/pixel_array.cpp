@@ -1,7 +1,7 @@
 // The geometry of a detector array with no radiometric model: pixel pitch, pixels across the line (or the
 // frame's width), the line or frame time. For geometry-only design files (GSD, swath, MTF budget, NIIRS with a
 // given SNR) where a datasheet detector's noise model is not wanted: it publishes the pitch and the line length
-// and leaves the radiation alone. An SNR comes from a datasheet detector (issue 13's emva1288) instead.
+// and leaves the radiation alone. An SNR comes from a datasheet detector (emva1288) instead.
 #include "radchain/plugin.hpp"
 
 namespace {

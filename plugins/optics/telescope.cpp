@@ -73,7 +73,7 @@ class Telescope final : public LaneStage<Telescope> {
     }
     form_ = signal.form;
     // A scene background (ground, sky) goes through the same optics — transmittance curve included — as an
-    // extended scene, behind an extended or a point target alike (the sky of a star field, issue 13 item 3).
+    // extended scene, behind an extended or a point target alike (the sky of a star field).
     Radiation& background = c.light.background;
     if (background.form == RadiationForm::scene_radiance && params_.has("focal_length")) {
       if (params_.has("transmittance_curve"))

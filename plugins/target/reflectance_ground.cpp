@@ -1,4 +1,4 @@
-// A Lambertian ground of reflectance ρ lit by the Sun at solar zenith angle θ_s (issue 14): the radiance that
+// A Lambertian ground of reflectance ρ lit by the Sun at solar zenith angle θ_s: the radiance that
 // reaches the aperture is
 //   L_λ = τ↑_λ ρ E_λ cos θ_s τ↓_λ / π  (+ L_path,λ, which the atmosphere adds to the scene background)
 // (Schott, Remote Sensing: The Image Chain Approach, 2nd ed. (2007), §4.1 "the big equation", Lambertian

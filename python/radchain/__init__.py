@@ -235,7 +235,7 @@ class Session:
         """A result (SI) as the last run/solve/evaluate left it."""
         return self._native.value(name)
 
-    def sweep(self, parameters: dict, results=None, solve: bool = True, frame: bool = False):
+    def sweep(self, parameters: dict, results=None, solve: bool = True, frame: bool = False, allow_large: bool = False):
         """Evaluates the chain at every point, on all cores with the GIL released (C++ lanes and solves).
 
         parameters: {"<section>.<key>": array of SI values}; the arrays broadcast together (numpy rules), so
@@ -243,18 +243,22 @@ class Session:
         (default: every result). solve=False evaluates forward only (a solved unknown may then be a parameter).
         Returns {name: array in SI of the broadcast shape} for each parameter and each result, plus "ok" (False
         where a solve failed; its unknown is NaN there), or with frame=True a pandas DataFrame of the flattened
-        points. A failed solve warns (RuntimeWarning) with the first failing point.
+        points. A failed solve warns (RuntimeWarning) with the first failing point. More than 10^8 points are refused
+        unless allow_large=True (as `radchain sweep --allow-large`); the values are copied before they are checked.
         """
         if not parameters:
             raise ValueError("sweep: give at least one parameter, e.g. {\"optics.aperture\": numpy.linspace(0.15, 0.3, 16)}")
         keys = [str(k) for k in parameters]
-        arrays = _np.broadcast_arrays(*[_np.asarray(v, dtype=_np.float64) for v in parameters.values()])
-        shape = arrays[0].shape
+        values = [_np.asarray(v, dtype=_np.float64) for v in parameters.values()]
+        shape = _np.broadcast_shapes(*(v.shape for v in values))
+        # Refused before the broadcast arrays are made (a typo'd shape would allocate gigabytes first).
+        _radchain.check_sweep_size(int(_np.prod(shape, dtype=_np.float64)), bool(allow_large))
+        arrays = _np.broadcast_arrays(*values)
         flat = [_np.ascontiguousarray(a.reshape(-1)) for a in arrays]
         if isinstance(results, str):
             results = [results]
         names, units, out, ok, failed, failure = self._native.sweep(keys, flat, [str(r) for r in results or []],
-                                                                    not solve)
+                                                                    not solve, bool(allow_large))
         if failed:
             _warnings.warn(f"{failed} of {ok.size} points: {failure}", RuntimeWarning, stacklevel=2)
         columns = {}
@@ -425,7 +429,7 @@ def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True)
     return _catalogue_frame(table, errors, code)
 
 
-def grid(path, axes: dict, set: dict | None = None, results=None, solve: bool = True):
+def grid(path, axes: dict, set: dict | None = None, results=None, solve: bool = True, allow_large: bool = False):
     """`radchain sweep path --set key=from:to:steps …` on all cores, in memory: a DataFrame of the grid's points in
     point order (the last axis varying fastest), the columns of `radchain sweep --out grid.npy` ("optics.aperture_cm",
     "target.magnitude", …: axes in the unit their range is written in, results in their display units).
@@ -434,7 +438,8 @@ def grid(path, axes: dict, set: dict | None = None, results=None, solve: bool = 
     text. A grid of limiting magnitudes is factored by axis where the chain allows it (docs/performance.md, "Factored
     grids"): df.attrs["method"] says how the points were solved, or why each was solved on its own, as `radchain sweep
     --explain` does. df.attrs["exit_code"] is the command's (1: a solve failed at some point, NaN there; a
-    RuntimeWarning says where). Session.sweep takes arbitrary values per point instead."""
+    RuntimeWarning says where). More than 10^8 points are refused unless allow_large=True (--allow-large). Session.sweep
+    takes arbitrary values per point instead."""
     if not axes:
         raise ValueError("grid: give at least one axis, e.g. {\"optics.aperture\": \"15 cm:30 cm:16\"}")
     if isinstance(results, str):
@@ -444,10 +449,11 @@ def grid(path, axes: dict, set: dict | None = None, results=None, solve: bool = 
         raise TypeError("grid(set=...) takes TOML value text, as --set does")
     table, failure, code, method = _radchain.sweep_table(
         str(path), texts, [(str(k), str(v)) for k, v in axes.items()], [str(r) for r in results or []], not solve,
-        "npy", "", "block")
+        "npy", "", "block", bool(allow_large))
     if failure:
         _warnings.warn(f"radchain sweep: {failure}", RuntimeWarning, stacklevel=2)
-    df = _pandas().DataFrame(_np.load(_io.BytesIO(table)))
+    # (radchain's own bytes: a wide table's header may exceed np.load's default 10000-byte guard against hostile files)
+    df = _pandas().DataFrame(_np.load(_io.BytesIO(table), max_header_size=len(table)))
     df.attrs["exit_code"] = code
     df.attrs["method"] = method
     return df

@@ -32,8 +32,8 @@ def _catalogue_shard(inputs, sets, results, no_solve, shard, order):
     return table.encode(), ""
 
 
-def _sweep_shard(path, sets, axes, results, no_solve, shard, order):
-    return _radchain.sweep_table(path, sets, axes, results, no_solve, "npy", shard, order)[:2]
+def _sweep_shard(path, sets, axes, results, no_solve, allow_large, shard, order):
+    return _radchain.sweep_table(path, sets, axes, results, no_solve, "npy", shard, order, allow_large)[:2]
 
 
 def _texts_only(set, call):
@@ -64,7 +64,7 @@ def _run_sharded(client, task, args, shards, order, format):
 
 
 def sweep(client, path, axes: dict, set: dict | None = None, results=None, solve: bool = True, shards: int | None = None,
-          order: str = "block"):
+          order: str = "block", allow_large: bool = False):
     """`radchain sweep path --set key=from:to:steps …` over the cluster: a DataFrame of the grid points in point
     order (the last axis varying fastest), the columns and float64 values of `radchain sweep --out grid.npy`
     ("optics.aperture_cm", "target.magnitude", … : axes in the unit their range is written in, results in their
@@ -72,6 +72,7 @@ def sweep(client, path, axes: dict, set: dict | None = None, results=None, solve
 
     axes: {"<section>.<key>": "from:to:steps"} (e.g. "15 cm:30 cm:1000"), the first outermost. set: fixed values,
     TOML text. shards: how many tasks (default: one per worker); order: "block" or "round-robin" (--shard-order).
+    A grid of more than 10^8 points is refused unless allow_large=True (--allow-large), more than 10^10 always.
     df.attrs["exit_code"] is the command's (1: a solve failed at some point, NaN there; a RuntimeWarning says where).
     """
     if not axes:
@@ -79,11 +80,12 @@ def sweep(client, path, axes: dict, set: dict | None = None, results=None, solve
     if isinstance(results, str):
         results = [results]
     args = (_os.path.abspath(str(path)), _texts_only(set, "sweep"), [(str(k), str(v)) for k, v in axes.items()],
-            [str(r) for r in results or []], not solve)
+            [str(r) for r in results or []], not solve, bool(allow_large))
     merged, code, failures = _run_sharded(client, _sweep_shard, args, shards, order, "npy")
     if failures:
         _warnings.warn(f"radchain sweep: {failures[0]}", RuntimeWarning, stacklevel=2)
-    df = _pandas().DataFrame(_np.load(_io.BytesIO(merged)))
+    # (radchain's own bytes: a wide table's header may exceed np.load's default 10000-byte guard against hostile files)
+    df = _pandas().DataFrame(_np.load(_io.BytesIO(merged), max_header_size=len(merged)))
     df.attrs["exit_code"] = code
     return df
 

@@ -27,6 +27,7 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -37,6 +38,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -103,6 +105,16 @@ py::array_t<double> to_array(const std::vector<double>& v) {
 }
 
 // --- Session -----------------------------------------------------------------------------------------------------
+
+// The limits of `radchain sweep` (--allow-large) for Session.sweep: hours of work and gigabytes should be asked for.
+void check_sweep_size(double points, bool allow_large) {
+  if (points > SweepOptions::max_points)
+    throw InputError(SourceLocation{"sweep", 0, 0}, "", fmt::format("{:.0f} points", points),
+                     fmt::format("more than {:g} points: split the job (radchain.dask.sweep shards it)", SweepOptions::max_points));
+  if (points > SweepOptions::large_points && !allow_large)
+    throw InputError(SourceLocation{"sweep", 0, 0}, "", fmt::format("{:.0f} points", points),
+                     fmt::format("more than {:g} points: pass allow_large=True if that is meant", SweepOptions::large_points));
+}
 
 class Session {
  public:
@@ -191,7 +203,7 @@ class Session {
   // Points: values[p] is parameter p at every point (SI). Returns (result names, SI units, out[r][i], ok[i],
   // failed count, first failure).
   py::tuple sweep(const std::vector<std::string>& keys, const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& arrays,
-                  const std::vector<std::string>& results, bool no_solve) {
+                  const std::vector<std::string>& results, bool no_solve, bool allow_large) {
     if (keys.size() != arrays.size()) throw std::invalid_argument("sweep: one array per parameter");
     std::size_t count = 0;
     for (std::size_t p = 0; p < arrays.size(); ++p) {
@@ -200,8 +212,15 @@ class Session {
       if (p == 0) count = n;
       else if (n != count) throw std::invalid_argument("sweep: arrays of different lengths");
     }
+    check_sweep_size(static_cast<double>(count), allow_large);
+    // The values are copied before they are checked: the caller's arrays may be changed by another thread while the
+    // GIL is released, and a value must not change between its check and its use.
+    std::vector<std::vector<double>> pinned;
     std::vector<const double*> values;
-    for (const auto& a : arrays) values.push_back(a.data());
+    for (const auto& a : arrays) {
+      pinned.emplace_back(a.data(), a.data() + count);
+      values.push_back(pinned.back().data());
+    }
     std::string key = no_solve ? "no-solve\n" : "solve\n";
     for (const auto& k : keys) key += "p " + k + "\n";
     for (const auto& r : results) key += "r " + r + "\n";
@@ -244,6 +263,7 @@ class Session {
   }
 
   std::mutex mutex;  // one call at a time (the GIL is released while the chain works)
+  std::atomic<std::thread::id> holder{};  // the thread inside a call: a Python stage calling back is refused
 
  private:
   static Chain build_chain(const std::string& path, const std::optional<std::string>& text,
@@ -282,15 +302,34 @@ class Session {
   std::string evaluator_key_;
 };
 
-// Calls f() with the session's mutex held and the GIL held. The mutex is taken with the GIL released, so that a
-// thread waiting for it never holds the GIL that the thread holding it may need.
+// One call's hold on its session. The mutex is taken with the GIL released, so that a thread waiting for it never
+// holds the GIL that the thread holding it may need. A Python stage of the session's chain that calls back into the
+// session (its own thread holds the mutex) would wait for ever: refused instead.
+class SessionCall {
+ public:
+  explicit SessionCall(Session& s) : s_(s), lock_(s.mutex, std::defer_lock) {
+    if (s.holder.load() == std::this_thread::get_id())
+      throw std::runtime_error("this Session is busy with a call that is still running (a Python stage called back "
+                               "into its own session): use another Session (radchain.load) inside a stage");
+    {
+      py::gil_scoped_release release;
+      lock_.lock();
+    }
+    s.holder = std::this_thread::get_id();
+  }
+  ~SessionCall() { s_.holder = std::thread::id{}; }
+  SessionCall(const SessionCall&) = delete;
+  SessionCall& operator=(const SessionCall&) = delete;
+
+ private:
+  Session& s_;
+  std::unique_lock<std::mutex> lock_;
+};
+
+// Calls f() with the session held (SessionCall) and the GIL held.
 template <class F>
 auto locked(Session& s, F&& f) {
-  std::unique_lock lock(s.mutex, std::defer_lock);
-  {
-    py::gil_scoped_release release;
-    lock.lock();
-  }
+  const SessionCall call(s);
   return f();
 }
 
@@ -502,7 +541,8 @@ py::tuple catalogue(const std::vector<std::string>& inputs, const std::vector<st
 // how the points were solved (Sweep::method(), what --explain prints).
 py::tuple sweep_table(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
                       const std::vector<std::pair<std::string, std::string>>& axes, const std::vector<std::string>& results,
-                      bool no_solve, const std::string& format, const std::string& shard, const std::string& order) {
+                      bool no_solve, const std::string& format, const std::string& shard, const std::string& order,
+                      bool allow_large) {
   std::ostringstream out;
   std::string failure, method;
   int code = 0;
@@ -515,6 +555,7 @@ py::tuple sweep_table(const std::string& path, const std::vector<std::pair<std::
     options.results = results;
     options.no_solve = no_solve;
     options.shard = shard_of(shard, order);
+    options.allow_large = allow_large;
     Sweep sweep(options);
     TableWriter writer(out, parse_table_format(format), sweep.layout(), sweep.points(), options.shard, sweep.job());
     code = sweep.run(writer, &failure);
@@ -726,14 +767,13 @@ void register_stage(const std::string& kind_name, const std::string& name, const
                                         &create_python_stage, std::move(terms), registered->needs, InverseForm::none});
 }
 
-// --- budget and uncertainty (issue 17): the CLI's tables as JSON text, parsed into DataFrames in __init__.py ----
+// --- budget and uncertainty: the CLI's tables as JSON text, parsed into DataFrames in __init__.py ----
 
 std::string budget(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
                    const std::vector<std::string>& results, bool no_solve) {
   std::ostringstream out;
   py::gil_scoped_release release;
-  Chain chain = load_sensor(path, to_overrides(sets));
-  if (no_solve) chain.solves.clear();
+  Chain chain = load_sensor(path, to_overrides(sets), no_solve ? Solving::forward_only : Solving::as_written);
   BudgetOptions options;
   options.results = results;
   write_budget(compute_budget(chain, options), TableFormat::json, out);
@@ -765,7 +805,7 @@ CompareInput compare_input(const py::object& x, const std::vector<Override>& ove
       CompareInput input;
       input.path = s.path();
       input.chain = s.fresh_chain();
-      if (!solve) input.chain->solves.clear();
+      if (!solve) input.chain->drop_solves();
       input.report = solve ? s.run() : s.evaluate();
       input.sensor_name = input.report.sensor_name;
       return input;
@@ -912,20 +952,20 @@ PYBIND11_MODULE(_radchain, m) {
       .def_property_readonly("overrides", &Session::overrides)
       .def_property_readonly("si_values", &Session::si_values)
       .def("set_text", [](Session& s, const std::string& key, const std::string& value) {
+        const SessionCall call(s);
         py::gil_scoped_release release;
-        std::lock_guard lock(s.mutex);
         s.set_text(key, value);
       })
       .def("set_si", [](Session& s, const std::string& key, double value) { locked(s, [&] { s.set_si(key, value); }); })
       .def("get", [](Session& s, const std::string& key) { return locked(s, [&] { return s.get(key); }); })
       .def("run", [](Session& s) {
+        const SessionCall call(s);
         py::gil_scoped_release release;
-        std::lock_guard lock(s.mutex);
         return s.run();
       })
       .def("evaluate", [](Session& s) {
+        const SessionCall call(s);
         py::gil_scoped_release release;
-        std::lock_guard lock(s.mutex);
         return s.evaluate();
       })
       .def("value", [](Session& s, const std::string& name) {
@@ -936,8 +976,8 @@ PYBIND11_MODULE(_radchain, m) {
       })
       .def("sweep", [](Session& s, const std::vector<std::string>& keys,
                        const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& arrays,
-                       const std::vector<std::string>& results, bool no_solve) {
-        return locked(s, [&] { return s.sweep(keys, arrays, results, no_solve); });
+                       const std::vector<std::string>& results, bool no_solve, bool allow_large) {
+        return locked(s, [&] { return s.sweep(keys, arrays, results, no_solve, allow_large); });
       });
 
   m.def("load", [](const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets) {
@@ -955,6 +995,7 @@ PYBIND11_MODULE(_radchain, m) {
   m.def("catalogue", &catalogue, py::arg("inputs"), py::arg("sets"), py::arg("results"), py::arg("no_solve"),
         py::arg("shard") = "", py::arg("order") = "block");
   m.def("sweep_table", &sweep_table);
+  m.def("check_sweep_size", &check_sweep_size);
   m.def("register_stage", &register_stage);
   m.def("merge", &merge);
   m.def("budget", &budget);

@@ -1,4 +1,4 @@
-"""A detector prototyped in Python (issue 16, item 3): PyPointCamera reads the light's spectrum in prepare() and
+"""A detector prototyped in Python: PyPointCamera reads the light's spectrum in prepare() and
 counts it with numpy, the way plugins/detector/emva1288.cpp counts a point image that falls in one pixel (no PSF,
 one exposure, no binning, no TDI, no sky):
     S = t η s ∫ P_λ λ/(hc) dλ over [band_min, band_max]            (EMVA 1288 R4.0 eq. 1, Pan 2010 eqs. 6-7)

@@ -1,12 +1,14 @@
-// Regressions (issue 18): outputs are atomic. Every file radchain writes goes to a temporary in the same folder
-// and is renamed when complete; a write error (a full disk, /dev/full, a file size limit) is one line on stderr
-// and exit 3, never a truncated file with exit 0; a killed sweep leaves no output; merge --out naming one of its
-// own shards does not empty it, and a failed merge leaves an existing --out untouched.
+// Outputs are atomic and replace nothing they should not. Every file radchain writes goes to a temporary in the same
+// folder and is renamed when complete; a write error (a full disk, /dev/full, a file size limit) is one line on
+// stderr and exit 3, never a truncated file with exit 0; a killed sweep leaves no output; an output naming one of the
+// command's inputs is refused; a replaced file keeps its mode, owner and links; a failed merge leaves an existing
+// --out untouched.
 #include "cli_helpers.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <signal.h>
 
 #include <chrono>
@@ -17,20 +19,6 @@ using namespace radchain::test;
 
 const std::string cli = RADCHAIN_CLI;
 const std::string small_sweep = "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:4'";
-
-// A shell command line with stderr (and stdout unless the command redirects it) captured.
-CliResult run_shell(const Scratch& scratch, const std::string& command_line) {
-  static int counter = 0;
-  const fs::path out = scratch / ("shell_out" + std::to_string(counter) + ".txt");
-  const fs::path err = scratch / ("shell_err" + std::to_string(counter++) + ".txt");
-  const std::string command = "{ " + command_line + " ; } >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  CliResult result;
-  if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
-  result.out = read_text(out);
-  result.err = read_text(err);
-  return result;
-}
 
 // Files of the scratch folder whose name starts with ".radchain-" (temporaries left behind).
 std::vector<std::string> leftovers(const Scratch& scratch) {
@@ -94,17 +82,69 @@ TEST(AtomicOutput, AFileSizeLimitLeavesNoTruncatedFileAndAnExistingOutUntouched)
   EXPECT_TRUE(leftovers(scratch).empty());
 }
 
-TEST(AtomicOutput, MergeOutNamingOneOfItsShardsGetsTheWholeMerge) {
+// An output that is one of the command's inputs is refused, whichever kind of input it is: the sensor file, a member
+// of the catalogue, a shard being merged, a results file being compared. The input is left as it was.
+TEST(AtomicOutput, AnOutputNamingOneOfTheCommandsInputsIsRefused) {
   Scratch scratch;
-  const fs::path a = scratch / "a.shard", b = scratch / "b.shard";
+  const fs::path sensor = scratch / "sbv.toml", a = scratch / "a.shard", b = scratch / "b.shard", json = scratch / "r.json";
+  write_text(sensor, read_text(sbv_file));
   ASSERT_EQ(run_cli(scratch, small_sweep + " --shard 1/2 --out '" + a.string() + "'").exit_code, 0);
   ASSERT_EQ(run_cli(scratch, small_sweep + " --shard 2/2 --out '" + b.string() + "'").exit_code, 0);
-  const CliResult merged = run_cli(scratch, "merge '" + a.string() + "' '" + b.string() + "'");
-  ASSERT_EQ(merged.exit_code, 0) << merged.err;
-  ASSERT_FALSE(merged.out.empty());
-  const CliResult r = run_cli(scratch, "merge '" + a.string() + "' '" + b.string() + "' --out '" + a.string() + "'");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(read_text(a), merged.out);
+  ASSERT_EQ(run_shell(scratch, "'" + cli + "' run '" + sbv_file + "' --format json >'" + json.string() + "'").exit_code, 0);
+  const std::string s = sensor.string();
+  const std::pair<std::string, fs::path> cases[] = {
+      {"sweep '" + s + "' --set 'optics.aperture=15 cm:30 cm:4' --out '" + s + "'", sensor},
+      {"catalogue '" + scratch.path().string() + "' --out '" + s + "'", sensor},
+      {"merge '" + a.string() + "' '" + b.string() + "' --out '" + a.string() + "'", a},
+      {"compare '" + json.string() + "' '" + sbv_file + "' --out '" + json.string() + "'", json},
+  };
+  for (const auto& [command, input] : cases) {
+    const std::string before = read_text(input);
+    const CliResult r = run_cli(scratch, command);
+    EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("is one of this command's inputs"), std::string::npos) << command << "\n" << r.err;
+    EXPECT_EQ(read_text(input), before) << command;
+  }
+  EXPECT_TRUE(leftovers(scratch).empty());
+}
+
+// Replacing an output keeps what its owner made of it: its mode (a 0600 file stays private) and owner, a symbolic
+// link keeps naming the file it named, and a file with hard links is refused rather than split from them.
+TEST(AtomicOutput, ReplacingAnOutputKeepsItsModeOwnerAndLinks) {
+  Scratch scratch;
+  const fs::path private_out = scratch / "private.csv";
+  write_text(private_out, "old\n");
+  ASSERT_EQ(::chmod(private_out.c_str(), 0600), 0);
+  const bool root = ::geteuid() == 0;
+  if (root) {
+    ASSERT_EQ(::chown(private_out.c_str(), 65534, 65534), 0);  // nobody's, replaced by root
+  }
+  ASSERT_EQ(run_cli(scratch, small_sweep + " --out '" + private_out.string() + "'").exit_code, 0);
+  struct stat st {};
+  ASSERT_EQ(::stat(private_out.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0600u);
+  if (root) {
+    EXPECT_EQ(st.st_uid, 65534u);
+  }
+  EXPECT_NE(read_text(private_out), "old\n");
+
+  const fs::path real = scratch / "real.csv", link = scratch / "link.csv";
+  write_text(real, "old\n");
+  fs::create_symlink(real, link);
+  const CliResult via_link = run_cli(scratch, small_sweep + " --out '" + link.string() + "'");
+  ASSERT_EQ(via_link.exit_code, 0) << via_link.err;
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_NE(read_text(real), "old\n");
+
+  const fs::path first = scratch / "first.csv", second = scratch / "second.csv";
+  write_text(first, "shared\n");
+  fs::create_hard_link(first, second);
+  const CliResult hard = run_cli(scratch, small_sweep + " --out '" + second.string() + "'");
+  EXPECT_EQ(hard.exit_code, 2) << hard.err;
+  EXPECT_NE(hard.err.find("hard links"), std::string::npos) << hard.err;
+  EXPECT_EQ(read_text(first), "shared\n");
+  EXPECT_EQ(fs::hard_link_count(first), 2u);
   EXPECT_TRUE(leftovers(scratch).empty());
 }
 
@@ -131,7 +171,7 @@ void kill_a_running_sweep(int signal, const std::string& message) {
     ::dup2(e, STDERR_FILENO);
     const int null = ::open("/dev/null", O_WRONLY);
     ::dup2(null, STDOUT_FILENO);
-    ::signal(SIGINT, SIG_DFL);
+    for (int s : {SIGINT, SIGHUP, SIGUSR1, SIGALRM, SIGXCPU}) ::signal(s, SIG_DFL);  // (an ignored one stays ignored)
     ::execl(cli.c_str(), cli.c_str(), "sweep", sbv_file.c_str(), "--set", "optics.aperture=15 cm:30 cm:3000", "--set",
             "detector.integration_time=0.1 s:10 s:3000", "--out", out.c_str(), static_cast<char*>(nullptr));
     ::_exit(127);
@@ -154,13 +194,20 @@ void kill_a_running_sweep(int signal, const std::string& message) {
 
 TEST(AtomicOutput, SigtermStopsASweepWithoutOutput) { kill_a_running_sweep(SIGTERM, "terminated (SIGTERM); no output file was written"); }
 TEST(AtomicOutput, SigintStopsASweepWithoutOutput) { kill_a_running_sweep(SIGINT, "interrupted (SIGINT); no output file was written"); }
+// Every other signal that ends a process and can be caught cleans up as well.
+TEST(AtomicOutput, EveryCatchableTerminatingSignalLeavesNoTemporary) {
+  kill_a_running_sweep(SIGHUP, "hung up (SIGHUP); no output file was written");
+  kill_a_running_sweep(SIGUSR1, "stopped by SIGUSR1; no output file was written");
+  kill_a_running_sweep(SIGALRM, "stopped by SIGALRM; no output file was written");
+  kill_a_running_sweep(SIGXCPU, "CPU time limit reached (SIGXCPU); no output file was written");
+}
 
 }  // namespace
 
 namespace {
 using namespace radchain::test;
 
-// Images, MTF tables and plots (issue 18 item 3): under a file size limit too small for them, each command fails
+// Images, MTF tables and plots: under a file size limit too small for them, each command fails
 // with one line naming the file, exit 3 (a write error), an existing file at the target untouched and no temporary
 // left — including the PNGs gnuplot draws (a child process) and the FITS frames CFITSIO writes. The limit is set in
 // bytes with prlimit (util-linux), not the shell's ulimit, whose block size differs between dash and bash.

@@ -69,6 +69,20 @@ inline CliResult run_cli(const Scratch& scratch, const std::string& arguments) {
   return result;
 }
 
+// A shell command line with stderr (and stdout unless the command redirects it) captured.
+inline CliResult run_shell(const Scratch& scratch, const std::string& command_line) {
+  static int counter = 0;
+  const fs::path out = scratch / ("shell_out" + std::to_string(counter) + ".txt");
+  const fs::path err = scratch / ("shell_err" + std::to_string(counter++) + ".txt");
+  const std::string command = "{ " + command_line + " ; } >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  CliResult result;
+  if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+  result.out = read_text(out);
+  result.err = read_text(err);
+  return result;
+}
+
 // sensors/msx-sbv.toml with one text replaced (the test fails loudly if `from` is not in the file).
 inline std::string sbv_with(const std::string& from, const std::string& to) {
   std::string text = read_text(sbv_file);

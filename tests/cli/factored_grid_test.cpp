@@ -1,7 +1,7 @@
 // Limiting magnitudes over a grid factored by axis (radchain/batch/factored_grid.hpp): every point against the
 // per-point solve and against Pan 2010 eq. (11) by hand, which axes the noise floor is found to depend on, the
 // points solved alone (roots outside the bracket, with the per-point failure text), when a grid is not factored and
-// why, shards, and random grids around the bundled sensors (issue 15: the two paths agree to 1e-10).
+// why, shards, and random grids around the bundled sensors (the two paths agree to 1e-10).
 #include "cli_helpers.hpp"
 #include "radchain/batch/factored_grid.hpp"
 #include "radchain/batch/sweep.hpp"
@@ -216,7 +216,7 @@ TEST(FactoredGrid, AShardsRowsAreTheWholeSweepsRows) {
   }
 }
 
-// Issue 15's property test for the factored path: random grids (2-3 axes, random ranges) around every bundled
+// The property test for the factored path: random grids (2-3 axes, random ranges) around every bundled
 // sensor whose solve is a limiting magnitude; where the plan factors, every point agrees with the per-point solve
 // to 1e-10 relative. The SBV always factors; how many others do is printed.
 TEST(FactoredGrid, RandomGridsAroundTheBundledSensorsAgreeWithThePerPointSolve) {

@@ -1,4 +1,4 @@
-// Regressions (issue 18): crafted shard files and shard counts. merge validates every header field and row
+// Regressions: crafted shard files and shard counts. merge validates every header field and row
 // against the job it belongs to and refuses what does not fit with one located line and exit 2 — it never
 // crashes (a shard count near 2^64 made it allocate a slot per shard; a catalogue shard with fewer columns than
 // a catalogue has made its summary read past the row).

@@ -32,7 +32,7 @@ TEST(RenderCli, EarthSceneAsFloatTiffAndBadExtension) {
   EXPECT_EQ(run_cli(scratch, "render '" + kolobrodov_file + "' --out " + (scratch / "x.jpg").string()).exit_code, 2);
 }
 
-// A real imager with a datasheet detector and an MTF budget (issue 14, item 8): the scene in electrons through the
+// A real imager with a datasheet detector and an MTF budget: the scene in electrons through the
 // budget, the detector's ADC; validate measures the budget on an edge and the chain's SNR on a flat field.
 TEST(RenderCli, DatasheetImagerRendersAndValidates) {
   Scratch scratch;

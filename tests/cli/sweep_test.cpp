@@ -223,9 +223,36 @@ TEST(SweepCli, PlotIsAPng) {
   EXPECT_EQ(two_axes.exit_code, 2);
 }
 
+// A sweep evaluates only what its columns need, says so with --explain, and gives the same SNR as a full sweep.
+TEST(Sweep, ExplainNamesTheStagesNoAskedResultNeeds) {
+  Scratch scratch;
+  const std::string s2 = source_dir + "/sensors/sentinel-2a-msi-b4.toml";
+  const std::string grid = "sweep '" + s2 + "' --set 'target.reflectance=0.05:0.6:12' --format csv ";
+  const CliResult focused = run_cli(scratch, grid + "--results detector.snr --explain");
+  EXPECT_EQ(focused.exit_code, 0) << focused.err;
+  EXPECT_EQ(focused.err, "radchain sweep: per point: no [[solve]]; not evaluated (no asked result or solve needs them): "
+                         "criteria.gsd, criteria.iq\n");
+  const CliResult everything = run_cli(scratch, grid + "--results detector.snr,criteria.iq.niirs --explain");
+  EXPECT_EQ(everything.err, "radchain sweep: per point: no [[solve]]; not evaluated (no asked result or solve needs "
+                            "them): criteria.gsd\n");
+  // The SNR column is the same text either way.
+  auto column = [](const std::string& csv, std::size_t index) {
+    std::istringstream in(csv);
+    std::string line, out;
+    while (std::getline(in, line)) {
+      std::istringstream cells(line);
+      std::string cell;
+      for (std::size_t i = 0; i <= index && std::getline(cells, cell, ','); ++i) {}
+      out += cell + "\n";
+    }
+    return out;
+  };
+  EXPECT_EQ(column(focused.out, 1), column(everything.out, 1));
+}
+
 }  // namespace
 
-// Regression (issue 18): a sensor name with a newline and a gnuplot system() line ran that command when a plot
+// Regression: a sensor name with a newline and a gnuplot system() line ran that command when a plot
 // was drawn. Every outside text now reaches gnuplot as an argument, never as script text.
 namespace {
 std::string hostile_name(const radchain::test::fs::path& marker) {

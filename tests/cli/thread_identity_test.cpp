@@ -1,4 +1,4 @@
-// Issue 18, concurrency: catalogue and sweep outputs are byte for byte the same for 1, 2 and 8 threads, in every
+// Concurrency: catalogue and sweep outputs are byte for byte the same for 1, 2 and 8 threads, in every
 // format (the rows are emitted in point order whatever thread computed them).
 #include "cli_helpers.hpp"
 

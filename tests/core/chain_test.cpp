@@ -199,4 +199,19 @@ TEST(Chain, BadSensorFileIsAnInputError) {
   }
 }
 
+// Forward only is one option of loading: the [[solve]] entries are gone, the unknown keeps the file's value (and its
+// result echoes it), the criterion is evaluated but not driven to zero, and a focused chain then leaves it out.
+TEST(Chain, ForwardOnlyLoadingKeepsTheUnknownsValue) {
+  Chain solved = load_sensor(sbv);
+  Chain forward = load_sensor(sbv, {{"target.magnitude", "12"}}, Solving::forward_only);
+  EXPECT_TRUE(forward.solves.empty());
+  const Report report = forward.run();
+  EXPECT_TRUE(report.solves.empty());
+  EXPECT_DOUBLE_EQ(*report.value("target.magnitude"), 12.0);
+  EXPECT_GT(*report.value("criteria.detection.margin"), 1.0);  // a 12th-magnitude star is far above the threshold
+  EXPECT_NEAR(*solved.run().value("criteria.detection.margin"), 0.0, 1e-12);
+  forward.focus({*forward.results().find("detector.snr")});
+  EXPECT_TRUE(forward.skips(forward.stages.size() - 1));  // no solve needs criteria.detection any more
+}
+
 }  // namespace

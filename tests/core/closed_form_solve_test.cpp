@@ -1,4 +1,4 @@
-// Closed-form solves (solver.cpp, issue 15) against the bracketing root-finder: both paths must give the same root
+// Closed-form solves (solver.cpp) against the bracketing root-finder: both paths must give the same root
 // to 1e-10 relative on every bundled sensor and example, on random parameter draws, near the bracket ends, in
 // lanes, and the same failure text where no root lies in the bracket. The bracketing solver (TOMS 748 to 2^-47
 // relative) is the independent reference: it knows nothing of the declared power laws.

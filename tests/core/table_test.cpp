@@ -1,4 +1,4 @@
-// [[table]] (issue 13 item 8): the limiting magnitude vs exposure of Rubin r, recomputed by hand from the noise
+// [[table]]: the limiting magnitude vs exposure of Rubin r, recomputed by hand from the noise
 // terms of the 30 s run — the CCD equation solved as a quadratic in S — and against single runs at each exposure.
 #include "radchain/chain.hpp"
 #include "radchain/report.hpp"

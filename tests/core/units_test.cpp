@@ -123,7 +123,7 @@ TEST(Units, UnparsableUnitIsAnInvalidArgument) {
   EXPECT_TRUE(units::parses("W m-2 nm-1"));
 }
 
-// Issue 18 (found by tests/fuzz/overrides_fuzz): a zero factor followed by a name made udunits2 leak that name
+// Found by tests/fuzz/overrides_fuzz: a zero factor followed by a name made udunits2 leak that name
 // (LeakSanitizer in the ASan build reports it at exit). Refused like any unparsable unit; the units after it parse.
 TEST(Units, ZeroFactorIsRefusedWithoutLeak) {
   // The '.' that multiplies (after a name or an exponent; spectrum_csv_fuzz, seed 1: "wavelength_m,_pk.0X").

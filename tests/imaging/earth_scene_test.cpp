@@ -142,7 +142,7 @@ TEST(RenderEarth, RefusesSensorsItCannotRender) {
 
 }  // namespace
 
-// ---- A datasheet detector (emva1288 on a reflectance target) and the chain's MTF budget (issue 14, item 8) ----
+// ---- A datasheet detector (emva1288 on a reflectance target) and the chain's MTF budget ----
 
 namespace datasheet {
 const char* s2 = "sentinel-2a-msi-b4.toml";

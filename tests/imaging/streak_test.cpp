@@ -1,4 +1,4 @@
-// Moving targets on rendered frames (issue 13 item 7): the streak a chain predicts is drawn, its PSF-weighted
+// Moving targets on rendered frames: the streak a chain predicts is drawn, its PSF-weighted
 // SNR measured on many frames agrees with the prediction, and the trailing loss shows.
 #include "radchain/error.hpp"
 #include "radchain/imaging/render.hpp"

@@ -1,4 +1,4 @@
-// atmosphere/airmass_lut (issue 14 item 2: an RT code's tables with airmass as a LUT axis): the Rubin site's MODTRAN
+// atmosphere/airmass_lut (an RT code's tables with airmass as a LUT axis): the Rubin site's MODTRAN
 // transmittances at X = 1.0, 1.5, 2.0, 2.5 (lsst/throughputs atmos/, shipped in spectra/). At a node the table
 // itself; between nodes ln τ linear in X (τ_i^(1−w) τ_(i+1)^w), against band means computed here from the CSV rows;
 // the path radiance linear in X; the bad inputs refused at their keys.

@@ -1,4 +1,4 @@
-// The Earth-observation chain of issue 14 — earth_orbit, pixel_array, gsd_requirement, giqe — run from the
+// The Earth-observation chain — earth_orbit, pixel_array, gsd_requirement, giqe — run from the
 // bundled files (sensors/worldview-2-pan*.toml, sensors/sentinel-2a-msi-b4.toml, examples/eo-design-niirs5.toml)
 // and checked against the closed forms of spherical-Earth geometry and the GIQE-5 computed here independently.
 #include "radchain/chain.hpp"
@@ -179,7 +179,7 @@ TEST(EarthObservation, Giqe4OptionUsesTheEdgeOvershoot) {
 
 }  // namespace
 
-// A dated scene (issue 14 item 2): the sun's day_of_year sets its distance and declination, the ground's latitude
+// A dated scene: the sun's day_of_year sets its distance and declination, the ground's latitude
 // and local solar time its zenith angle; against the closed forms computed here and the undated chain.
 namespace dated {
 std::string sentinel_with(const std::string& source_extra, const std::string& target_lines) {

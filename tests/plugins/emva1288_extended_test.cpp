@@ -1,4 +1,4 @@
-// The EMVA 1288 detector on an extended scene (issue 14, item 3): a reflectance ground through a telescope,
+// The EMVA 1288 detector on an extended scene: a reflectance ground through a telescope,
 // counted by étendue. Every number against a hand computation: the étendue count A_pixel Ω τ ∫ L η λ/(hc) dλ,
 // NEΔL = L_ref / SNR, the saturation radiance from the full well (or the ADC), TDI's √N, NEΔρ, and the bad
 // inputs that must be refused with a located error.
@@ -279,7 +279,7 @@ plugin = "unsaturated"
   EXPECT_NE(what.find("reflectance_ground"), std::string::npos) << what;
 }
 
-// Path radiance (issue 14 item 2): L = τ↑ ρ E cos θ_s τ↓/π + L_path (Schott 2007 §4.1). The atmosphere's path
+// Path radiance: L = τ↑ ρ E cos θ_s τ↓/π + L_path (Schott 2007 §4.1). The atmosphere's path
 // radiance reaches the pupil as a radiance, so the pixel counts it through the same étendue: k L̄_path more
 // electrons, by hand; the reflectance's derivative (NEΔρ) and a reference given as a reflectance count the surface
 // part only. A flat 5 W m-2 sr-1 over the 630-690 nm band (`constant`, τ = 1) and a tabulated ramp.

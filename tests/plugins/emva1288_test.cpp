@@ -114,7 +114,7 @@ TEST(Emva1288Chain, NoiseBudgetByHand) {
   EXPECT_NEAR(neff, radchain::physics::gaussian_noise_equivalent_area_px(2.0), 1e-12);
 }
 
-// TDI (issue 14 uses this): N stages multiply signal and dark, read noise counts once.
+// TDI (as Earth-observation line cameras use it): N stages multiply signal and dark, read noise counts once.
 TEST(Emva1288Chain, TdiStagesMultiplySignalAndDarkNotReadNoise) {
   const std::string det = "dark_noise = \"20 e-\"\ndark_current = \"100 e-/s\"\nintegration_time = \"1 ms\"\n";
   const Report one = run(write_sensor("tdi1", "magnitude = 14", det));
@@ -198,7 +198,7 @@ TEST(Emva1288Chain, RubinLsstRBandDepth) {
   EXPECT_NEAR(v("detector.sky_electrons_per_pixel") / sky, 1.0, 1e-3);
 }
 
-// Circular aperture photometry (issue 13 item 5): a circle of R = 10 µrad on the sky is 10 µm on the 1 m focal
+// Circular aperture photometry: a circle of R = 10 µrad on the sky is 10 µm on the 1 m focal
 // plane, 2 pixels of 5 µm: the Gaussian's encircled energy 1 − exp(−R²/2σ²) (σ = FWHM/2√(2 ln 2)) of the image
 // is the signal, π R² = 4π pixels carry the read noise, and n_eff still sets the PRNU term.
 TEST(Emva1288Chain, CircularApertureEncircledEnergyAndAreaByHand) {
@@ -271,7 +271,7 @@ TEST(Emva1288Chain, CircleAndJitterRules) {
   refused("jitter = \"-1 arcsec\"\n", "jitter");
 }
 
-// Throughput as a list of curves (issue 13 item 2): the Rubin r hardware as its eight components (mirrors and
+// Throughput as a list of curves: the Rubin r hardware as its eight components (mirrors and
 // lenses in the optics, filter and CCD in the detector) gives sensors/rubin-lsst-r-m5.toml's m5 and zero point
 // (hardware_r.dat is their product to 7e-16; the component tables carry 9 significant digits), and each
 // component's band mean is a result equal to the trapezoid of its table by hand.

@@ -1,4 +1,4 @@
-// reflectance_ground (issue 14): the at-aperture radiance L = τ↑ ρ E cos θ_s τ↓ / π + L_path against a hand
+// reflectance_ground: the at-aperture radiance L = τ↑ ρ E cos θ_s τ↓ / π + L_path against a hand
 // computation from the source's in-band irradiance and the atmosphere's inputs.
 #include "radchain/chain.hpp"
 #include "radchain/error.hpp"

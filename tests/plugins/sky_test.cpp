@@ -1,4 +1,4 @@
-// The sky as its own radiation (issue 13 item 3): the site's sky (flat in f_ν, or a spectral radiance table
+// The sky as its own radiation: the site's sky (flat in f_ν, or a spectral radiance table
 // such as Rubin's dark-sky SED) imaged by the telescope as an extended scene and counted by the emva1288
 // detector by étendue. Every number against a hand integral on the tables' own grids, or a published value.
 #include "radchain/chain.hpp"
@@ -218,7 +218,7 @@ TEST(Zodiacal, BackgroundElectronsByHandAndStrayLightAdds) {
   EXPECT_DOUBLE_EQ(v(zodi, "detector.image_electrons"), v(vacuum, "detector.image_electrons"));
 }
 
-// A stray-light table (issue 13 item 3: "stray light/earthshine as tables"), two independent references:
+// A stray-light table, two independent references:
 // - a flat 1 W m⁻² sr⁻¹ m⁻¹ over 300-1000 nm behind the same optics and detector, in closed form:
 //   B = t qe p² Ω ∫ L λ/(hc) dλ = t qe p² Ω L (λ₂² − λ₁²)/(2hc) over the band 400-900 nm;
 // - the solar spectrum's shape at 1 W m⁻² sr⁻¹ m⁻¹ at 500 nm as a table: the same count as `stray_light` of that

@@ -39,7 +39,7 @@ TEST(EoImagerMtf, NyquistMtfOfEveryImagerAgainstONeill) {
         << name;
     checked.insert(name);
   }
-  // Every imager of the catalogue with an MTF budget (issue 14 item 7): none may drop out silently.
+  // Every imager of the catalogue with an MTF budget: none may drop out silently.
   const std::set<std::string> imagers = {"ikonos-2-pan",       "ikonos-2-pan-27deg", "landsat-8-oli-b2",      "landsat-8-tirs-b10",
                                          "pleiades-1a-hiri-pan", "seahawk-hawkeye-b4", "sentinel-2a-msi-b4",   "sentinel-2a-msi-b8",
                                          "worldview-2-pan",    "worldview-2-pan-20deg"};

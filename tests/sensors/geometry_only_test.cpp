@@ -1,4 +1,4 @@
-// Geometry-only sensor files (issue 14 item 1): without [source], [atmosphere] and [target] a chain evaluates
+// Geometry-only sensor files: without [source], [atmosphere] and [target] a chain evaluates
 // everything that needs no light (GSD, swath, MTF, NIIRS at a given SNR); a stage that needs light refuses with
 // one located line naming the missing [source]. A file with some light sections must have all three.
 #include "radchain/chain.hpp"

@@ -273,8 +273,8 @@ int run_catalogue(const std::vector<std::string>& files, const CatalogueOptions&
           const std::string& file = files[points[i]];
           Outcome& out = outcomes[i];
           try {
-            Chain chain = load_sensor(file, options.overrides);
-            if (options.no_solve) chain.solves.clear();
+            Chain chain = load_sensor(file, options.overrides,
+                                      options.no_solve ? Solving::forward_only : Solving::as_written);
             if (!options.tables) chain.tables.clear();
             chain.solver = options.solver;
             const Report report = chain.run();
@@ -285,6 +285,8 @@ int run_catalogue(const std::vector<std::string>& files, const CatalogueOptions&
             out.error = error.what();
           } catch (const std::exception& error) {
             out.error = fmt::format("{}: internal error: {}", file, error.what());
+          } catch (...) {  // a plugin may throw anything: it fails its own file, not the catalogue
+            out.error = fmt::format("{}: internal error: a plugin threw an exception that is not a std::exception", file);
           }
           if (!out.error.empty()) out.rows = {catalogue_error_row(file, out.error)};
           if (options.progress) options.progress->fetch_add(1, std::memory_order_relaxed);

@@ -2,6 +2,7 @@
 #include "radchain/batch/compare.hpp"
 
 #include "radchain/error.hpp"
+#include "radchain/input_file.hpp"
 #include "parameter_lookup.hpp"
 #include "radchain/units.hpp"
 
@@ -35,8 +36,7 @@ using batch_detail::is_numeric;
 // A results file of `radchain run --format json` -> the Report it was printed from (results and solves).
 Report report_from_json(const std::string& path) {
   auto fail = [&](const std::string& problem) { return InputError(SourceLocation{path, 0, 0}, "results file", "", problem); };
-  std::ifstream in(path);
-  if (!in) throw fail("cannot be read (missing file or no permission)");
+  std::ifstream in = open_input_file(path, "results file", max_results_file_bytes);
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
@@ -300,8 +300,7 @@ CompareInput load_compare_input(const std::string& path, const std::vector<Overr
     input.results_file = true;
     input.report = report_from_json(path);
   } else {
-    input.chain.emplace(load_sensor(path, overrides));
-    if (!solve) input.chain->solves.clear();  // forward only: the unknowns keep their values
+    input.chain.emplace(load_sensor(path, overrides, solve ? Solving::as_written : Solving::forward_only));
     // run() leaves the solved values in the unknowns; the inputs compared are the file's (as validated).
     std::vector<std::pair<ParameterRef, double>> unknowns;
     for (const auto& s : input.chain->solves) {

@@ -19,7 +19,7 @@ namespace {
 constexpr double floor_tolerance = 1e-12;
 // How far lg S_end may stray from the product of its axis factors at a corner (log10 units: 2.3e-11 relative).
 constexpr double separation_tolerance = 1e-11;
-// The plan against the per-point solve, relative (issue 15 asks 1e-10 of the two paths).
+// The plan against the per-point solve, relative (the two paths must agree to 1e-10).
 constexpr double check_tolerance = 1e-11;
 // A root this close to a bracket end is solved on its own (the per-point solver decides there).
 constexpr double end_margin = 1e-9;

@@ -56,7 +56,7 @@ void check_parameter_value(Chain& chain, const std::string& key, double value_si
 class PointsEvaluator::Worker {
  public:
   Worker(const PointsEvaluator& owner) : owner_(owner), chain_(owner.job_.make_chain()) {
-    if (owner.job_.no_solve) chain_.solves.clear();
+    if (owner.job_.no_solve) chain_.drop_solves();
     for (const auto& key : owner.job_.parameters) parameters_.push_back(chain_.parameter(key));
     for (const auto& s : chain_.solves) {
       const ParameterRef p = chain_.parameter(s.unknown);
@@ -163,7 +163,7 @@ class PointsEvaluator::Worker {
 // --- PointsEvaluator ----------------------------------------------------------------------------------------
 
 PointsEvaluator::PointsEvaluator(PointsJob job) : job_(std::move(job)), checker_(job_.make_chain()) {
-  if (job_.no_solve) checker_.solves.clear();
+  if (job_.no_solve) checker_.drop_solves();
   for (std::size_t p = 0; p < job_.parameters.size(); ++p) {
     const std::string& key = job_.parameters[p];
     const std::string where = "sweep " + key;

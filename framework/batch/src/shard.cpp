@@ -3,6 +3,7 @@
 
 #include "radchain/batch/catalogue.hpp"
 #include "radchain/error.hpp"
+#include "radchain/input_file.hpp"
 #include "table_text.hpp"
 
 #include <fmt/format.h>
@@ -88,8 +89,8 @@ struct ShardReader {
   InputError fail(const std::string& problem) const { return InputError(SourceLocation{path, 0, 0}, "merge", "", problem); }
 
   void open() {
-    in.open(path);
-    if (!in) throw fail("cannot be read (missing file or no permission)");
+    // Shards are as large as the job (no size cap), but a FIFO or a device is refused before it blocks.
+    in = open_input_file(path, "shard file", UINTMAX_MAX);
     std::string header;
     if (!std::getline(in, header) || header.rfind(shard_magic, 0) != 0)
       throw fail("not a shard file (it does not start with \"# radchain shard\"; write shards with --shard k/n)");

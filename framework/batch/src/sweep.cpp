@@ -164,8 +164,8 @@ namespace {
 
 // The sensor as every point starts from: fixed overrides applied, solves dropped with --no-solve.
 Chain load_swept_sensor(const SweepOptions& options) {
-  Chain chain = load_sensor(options.sensor_file, options.overrides);
-  if (options.no_solve) chain.solves.clear();
+  Chain chain = load_sensor(options.sensor_file, options.overrides,
+                            options.no_solve ? Solving::forward_only : Solving::as_written);
   chain.solver = options.solver;
   return chain;
 }
@@ -185,7 +185,11 @@ Sweep::Sweep(SweepOptions options) : options_(std::move(options)) {
   std::vector<std::string> all;
   for (std::size_t i = 0; i < results.size(); ++i) all.push_back(results.info(i).name);
   results_ = options_.results.empty() ? all : options_.results;
-  for (const auto& name : results_) {
+  for (std::size_t i = 0; i < results_.size(); ++i) {
+    const std::string& name = results_[i];
+    // Two columns of one name make a table that numpy.load refuses ("name already used").
+    if (std::find(results_.begin(), results_.begin() + static_cast<std::ptrdiff_t>(i), name) != results_.begin() + static_cast<std::ptrdiff_t>(i))
+      throw InputError(SourceLocation{"--results", 0, 0}, "", name, "is listed twice (one column per result)");
     const auto id = results.find(name);
     if (!id) {
       const std::string near = nearest_match(name, all);
@@ -268,6 +272,11 @@ int Sweep::run(TableWriter& writer, std::string* failure,
   method_ = factored                 ? factored->description()
             : options_.no_solve      ? std::string("forward evaluation at every point (--no-solve)")
                                      : "per point: " + why_not;
+  std::vector<std::string> left_out;
+  const Chain& chain = workers[0]->chain();
+  for (std::size_t k = 0; k < chain.stages.size(); ++k)
+    if (chain.skips(k)) left_out.push_back(chain.stages[k].section);
+  if (!left_out.empty()) method_ += "; not evaluated (no asked result or solve needs them): " + join(left_out);
 
   // Blocks bound the memory (values and formatted cells) of long sweeps.
   constexpr std::size_t block = 16384;

@@ -54,9 +54,13 @@ VariedInput parse_vary(Chain& chain, const std::string& text) {
 Uncertainty run_uncertainty(const UncertaintyOptions& options) {
   if (options.samples < 2)
     throw InputError(SourceLocation{"--samples", 0, 0}, "", std::to_string(options.samples), "at least 2 samples");
+  if (options.samples > UncertaintyOptions::max_samples)
+    throw InputError(SourceLocation{"--samples", 0, 0}, "", std::to_string(options.samples),
+                     fmt::format("at most {} samples (the estimates' error falls as 1/√N: 10⁶ samples give percentiles "
+                                 "to 0.1 % of σ)", UncertaintyOptions::max_samples));
   auto load = [&] {
-    Chain chain = load_sensor(options.sensor_file, options.overrides);
-    if (options.no_solve) chain.solves.clear();
+    Chain chain = load_sensor(options.sensor_file, options.overrides,
+                              options.no_solve ? Solving::forward_only : Solving::as_written);
     chain.solver = options.solver;
     return chain;
   };

@@ -15,7 +15,7 @@ int plugins() {
   const auto found = PluginHost::instance().discover();
   fmt::print("radchain {}, plugin ABI {}\n", framework_version, plugin_abi_version);
   fmt::print("{:<20} {:<11} {:<8} {}\n", "name", "kind", "version", "file");
-  // Every library gets its line: one that cannot be used says why there, and the listing goes on (issue 18).
+  // Every library gets its line: one that cannot be used says why there, and the listing goes on.
   std::size_t unusable = 0;
   for (const auto& f : found) {
     try {

@@ -47,8 +47,8 @@ int sweep(const SweepCommand& command) {
   Sweep sweep(options);
   // The file as swept (fixed overrides applied): its solves and its name, and a warning for a fixed --set on an
   // unknown that a [[solve]] overwrites at every point (Sweep refuses an axis on one).
-  Chain chain = load_sensor(options.sensor_file, options.overrides);
-  if (options.no_solve) chain.solves.clear();
+  Chain chain = load_sensor(options.sensor_file, options.overrides,
+                            options.no_solve ? Solving::forward_only : Solving::as_written);
   warn_about_solved_overrides(chain.solves, options.overrides, std::cerr);
 
   // The plotted series: --results, else the solved unknowns, else the SNR, else the first result.

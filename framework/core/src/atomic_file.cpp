@@ -1,6 +1,7 @@
 #include "radchain/atomic_file.hpp"
 
 #include "radchain/error.hpp"
+#include "radchain/input_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -84,10 +85,26 @@ AtomicFile::AtomicFile(std::string path, std::string what) : path_(std::move(pat
     if (fd_ < 0) throw InputError(SourceLocation{what_, 0, 0}, "", path_, "cannot be written: " + reason(errno));
     return;
   }
-  const fs::path target(path_);
+  auto refuse = [&](const std::string& problem) { return InputError(SourceLocation{what_, 0, 0}, "", path_, problem); };
+  refuse_an_input();
+  // Replacing a file keeps what the user made of it: a link stays a link (the file it names is replaced), and the
+  // replacement gets the old file's mode and owner. Hard links cannot be kept by a rename: refused.
+  target_ = path_;
+  struct stat existing {};
+  const bool replacing = ::lstat(path_.c_str(), &existing) == 0;
+  if (replacing && S_ISLNK(existing.st_mode)) {
+    std::error_code ec;
+    target_ = fs::canonical(path_, ec).string();
+    if (ec) throw refuse("is a link to a missing file (" + reason(ec.value()) + "): remove the link or write elsewhere");
+    if (::stat(target_.c_str(), &existing) != 0) throw refuse("cannot be examined: " + reason(errno));
+  }
+  if (replacing && existing.st_nlink > 1)
+    throw refuse(std::to_string(existing.st_nlink) + " names share this file (hard links); replacing it would split them: "
+                 "remove it first or write elsewhere");
+  const fs::path target(target_);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   const std::string name = target.filename().string();
-  if (name.empty()) throw InputError(SourceLocation{what_, 0, 0}, "", path_, "names a folder, not a file");
+  if (name.empty()) throw refuse("names a folder, not a file");
   // Hidden, in the same folder (rename stays on one file system), the target's name last so its extension is kept.
   for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
     temporary_ = (folder / (".radchain-" + std::to_string(::getpid()) + "-" + std::to_string(temporary_counter++) +
@@ -100,6 +117,26 @@ AtomicFile::AtomicFile(std::string path, std::string what) : path_(std::move(pat
     throw InputError(SourceLocation{what_, 0, 0}, "", path_,
                      "cannot be written (" + reason(errno) + "; missing folder or no permission?)");
   slot_ = register_pending(temporary_);
+  if (!replacing) return;
+  struct stat created {};
+  const bool owner_kept = ::fstat(fd_, &created) == 0 &&
+                          ((created.st_uid == existing.st_uid && created.st_gid == existing.st_gid) ||
+                           ::fchown(fd_, existing.st_uid, existing.st_gid) == 0);
+  if (!owner_kept || ::fchmod(fd_, existing.st_mode & 07777) != 0) {
+    const int error = errno;
+    discard();
+    throw refuse("belongs to another user or group (" + reason(error) +
+                 "): replacing it would change its owner or mode; write elsewhere");
+  }
+}
+
+// An output that is one of the command's own inputs (a sensor file, a spectrum it reads, a shard it merges).
+void AtomicFile::refuse_an_input() const {
+  const std::string kind = input_file_kind(path_);
+  if (!kind.empty())
+    throw InputError(SourceLocation{what_, 0, 0}, "", path_,
+                     "is one of this command's inputs (a " + kind + " it reads): writing it would replace the input; "
+                     "write elsewhere");
 }
 
 AtomicFile::~AtomicFile() { discard(); }
@@ -134,11 +171,19 @@ void AtomicFile::commit() {
     if (buffer_->error) fail(buffer_->error);
     if (!*stream_) fail(EIO);
   }
+  if (!in_place_) {
+    try {
+      refuse_an_input();  // (an input read after the output was opened)
+    } catch (...) {
+      discard();
+      throw;
+    }
+  }
   if (!in_place_ && ::fsync(fd_) != 0) fail(errno);
   const int closed = ::close(fd_);
   fd_ = -1;
   if (closed != 0 && errno != EINTR) fail(errno);
-  if (!in_place_ && ::rename(temporary_.c_str(), path_.c_str()) != 0) fail(errno);
+  if (!in_place_ && ::rename(temporary_.c_str(), target_.c_str()) != 0) fail(errno);
   committed_ = true;
   unregister_pending(slot_);
   slot_ = -1;

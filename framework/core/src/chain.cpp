@@ -207,6 +207,8 @@ void Chain::focus(const std::vector<ResultId>& wanted) {
     std::vector<char> publishes(stages.size(), 0);
     std::size_t last = 0;
     for (ResultId id : needed) {
+      // A solved unknown's echo is written by the chain itself after the stages (its value is the parameter's).
+      if (std::any_of(resolved_.begin(), resolved_.end(), [&](const ResolvedSolve& r) { return r.echo == id; })) continue;
       std::size_t k = 0;
       while (k < stages.size() && std::none_of(stages[k].memo.declarations.begin(), stages[k].memo.declarations.end(),
                                                [&](const StageMemo::Declared& d) { return d.id == id; }))

@@ -1,12 +1,11 @@
 // The only file that sees toml++: it turns a TOML document into the framework's ConfigValue tree.
 #include "radchain/config.hpp"
+#include "radchain/input_file.hpp"
 
 #include <toml++/toml.h>
 
 #include <algorithm>
 #include <fmt/format.h>
-#include <fstream>
-#include <sstream>
 
 namespace radchain {
 namespace {
@@ -16,7 +15,7 @@ SourceLocation location_of(const toml::node& node, const std::string& file) {
   return SourceLocation{file, static_cast<int>(begin.line), static_cast<int>(begin.column)};
 }
 
-// Limits on the shape of a document (issue 18): a dotted key of thousands of parts overflowed the stack, in the
+// Limits on the shape of a document: a dotted key of thousands of parts overflowed the stack, in the
 // conversion below and (at ~50,000 parts) inside toml++. No sensor file needs more than a few levels.
 constexpr std::size_t max_key_parts = 64;    // parts of one dotted key or table header
 constexpr std::size_t max_depth = 128;       // tables and arrays nested (toml++ caps inline nesting at 256)
@@ -179,11 +178,7 @@ std::string ConfigValue::type_name() const {
 }
 
 ConfigValue parse_toml_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(SourceLocation{path, 0, 0}, "sensor file", "", "cannot be read (missing file or no permission)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse(buffer.str(), path);
+  return parse(read_input_file(path, "sensor file", max_sensor_file_bytes), path);
 }
 
 ConfigValue parse_toml_text(const std::string& text, const std::string& name_for_messages) {

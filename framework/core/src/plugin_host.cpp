@@ -32,7 +32,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // The library's radchain_plugin_abi_version read from the file itself (its ELF dynamic symbol table), before
-// dlopen runs any of its static constructors (issue 18). Found: the number; the file is a well-formed ELF64 without
+// dlopen runs any of its static constructors. Found: the number; the file is a well-formed ELF64 without
 // the symbol: 0 (not a plugin); anything else (another ELF class, a malformed or huge file): nullopt, and the
 // loader's own checks decide.
 // The file mapped read-only: only the pages of the headers and the dynamic symbol table are read (a plugin with

@@ -144,7 +144,8 @@ void build_stage(Chain& chain, const std::string& section, const ConfigValue& ta
 }  // namespace
 
 // The sensor file as parsed (a file or text named `path`) -> Chain: what load_sensor and load_sensor_text share.
-static Chain build_sensor(ConfigValue root, const std::string& path, const std::vector<Override>& overrides);
+static Chain build_sensor(ConfigValue root, const std::string& path, const std::vector<Override>& overrides,
+                          Solving solving);
 
 namespace {
 
@@ -230,15 +231,17 @@ void check_stated_once(const Chain& chain) {
 }  // namespace
 static void read_tables(Chain& chain, const ConfigValue& tables, const std::string& path);
 
-Chain load_sensor(const std::string& path, const std::vector<Override>& overrides) {
-  return build_sensor(parse_toml_file(path), path, overrides);
+Chain load_sensor(const std::string& path, const std::vector<Override>& overrides, Solving solving) {
+  return build_sensor(parse_toml_file(path), path, overrides, solving);
 }
 
-Chain load_sensor_text(const std::string& text, const std::string& path, const std::vector<Override>& overrides) {
-  return build_sensor(parse_toml_text(text, path), path, overrides);
+Chain load_sensor_text(const std::string& text, const std::string& path, const std::vector<Override>& overrides,
+                       Solving solving) {
+  return build_sensor(parse_toml_text(text, path), path, overrides, solving);
 }
 
-static Chain build_sensor(ConfigValue root, const std::string& path, const std::vector<Override>& overrides) {
+static Chain build_sensor(ConfigValue root, const std::string& path, const std::vector<Override>& overrides,
+                          Solving solving) {
   for (const auto& o : overrides) apply_override(root, o);
 
   for (const auto& [key, value] : root.members) {
@@ -436,6 +439,7 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
       chain.uncertainties.push_back(UncertaintySpec{key, value.string_value, value.where});
     }
   }
+  if (solving == Solving::forward_only) chain.drop_solves();
   return chain;
 }
 

@@ -1,7 +1,7 @@
 // The chain's [[solve]] entries. Where the chain declares how the unknown acts (a power law of x or of the flux
 // 10^(−0.4 x), through stages whose results are power laws, into a criterion with a closed-form inverse), the root
 // follows in closed form — for a target's magnitude through the noise equation from the faint bracket end alone,
-// otherwise from the margins at both ends — and is accepted when the margin there is zero to 1e-12 (issue 15);
+// otherwise from the margins at both ends — and is accepted when the margin there is zero to 1e-12;
 // otherwise, and with --solver root, the root is bracketed one point at a time (Boost.Math TOMS 748) or for
 // lane_count points in lockstep (Dekker's method).
 #include "radchain/chain.hpp"
@@ -512,6 +512,11 @@ void Chain::solve_lanes(LaneSolveOutcome& outcome) {
   ++outcome.passes;
 }
 
+void Chain::drop_solves() {
+  solves.clear();
+  for (ResolvedSolve& r : resolved_) r.margins.clear(), r.inversions.clear();  // (echoes stay: the unknowns' values)
+}
+
 void Chain::solve_all(std::vector<SolveOutcome>& outcomes) {
   outcomes.resize(solves.size());
   if (solves.empty()) {
@@ -519,7 +524,7 @@ void Chain::solve_all(std::vector<SolveOutcome>& outcomes) {
     return;
   }
   // A failed solve has no value: the result echoing its unknown says NaN, not the bracket end the solver tried
-  // last (issue 18: "results that lie"). Set after every evaluation, since each one rewrites the echoes.
+  // last, which would pass for a real result. Set after every evaluation, since each one rewrites the echoes.
   auto failed_are_nan = [&] {
     for (std::size_t i = 0; i < solves.size(); ++i)
       if (!outcomes[i].converged && resolved_[i].echo != SIZE_MAX)

@@ -1,13 +1,13 @@
 #include "radchain/spectrum_csv.hpp"
 
 #include "radchain/error.hpp"
+#include "radchain/input_file.hpp"
 #include "radchain/units.hpp"
 
 #include <fmt/format.h>
 
 #include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -63,24 +63,14 @@ std::string unit_of_column(const std::string& column) {
 
 SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expected_si_unit,
                                Extrapolation extrapolation) {
-  std::ifstream in(path);
   auto fail = [&](int line, const std::string& problem, int column = 0) -> InputError {
     return InputError(SourceLocation{path, line, column}, "spectrum file", "", problem);
   };
-  if (!in) throw fail(0, "cannot be read (missing file or no permission)");
-  // Limits (issue 18): a sensor file may name any readable file; a spectrum is a few thousand rows, never a
-  // device, a FIFO or gigabytes. Checked before reading, and per line (a file that grows while read).
-  constexpr std::uintmax_t max_bytes = 64u << 20;
+  // A sensor file may name any readable file; a spectrum is a few thousand rows, never a device, a FIFO or
+  // gigabytes: checked before opening, and per line below (a file that grows while read).
+  std::ifstream in = open_input_file(path, "spectrum file", max_table_file_bytes);
   constexpr int max_rows = 1000000;
   constexpr std::size_t max_line = 4096;
-  {
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (!ec && !std::filesystem::is_regular_file(status)) throw fail(0, "is not a regular file");
-    const auto size = std::filesystem::file_size(path, ec);
-    if (!ec && size > max_bytes)
-      throw fail(0, fmt::format("{} bytes: more than a spectrum table may have ({} MiB)", size, max_bytes >> 20));
-  }
 
   SpectrumFile out;
   std::string line;

@@ -11,6 +11,7 @@
 
 #include <OpenImageIO/imageio.h>
 #include <fitsio.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
@@ -213,7 +214,7 @@ void write_fits(const std::string& path, const Image& image, const Header& heade
     case FitsPixel::int32: rows32 = fits_rows(image, integers<std::int32_t>(image)); break;
     case FitsPixel::float32: rows_float = fits_rows(image, image.pixels); break;
   }
-  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
+  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete
   int status = 0;
   fitsfile* fits = nullptr;
   const std::string target = "!" + file.temporary_path();  // '!': replace an existing file
@@ -242,7 +243,7 @@ void write_float_image(const std::string& path, const Image& image, const Header
   for (const auto& card : header) spec.attribute("radchain:" + card.key, card_value_text(card));
   auto out = OIIO::ImageOutput::create(path);
   if (!out) oiio_failure("cannot write", path, {});
-  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
+  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete
   if (!out->open(file.temporary_path(), spec)) oiio_failure("cannot write", path, out->geterror());
   if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) oiio_failure("cannot write", path, out->geterror());
   if (!out->close()) oiio_failure("cannot write", path, out->geterror());
@@ -324,6 +325,10 @@ RawHeader raw_header(const std::string& path) {
 // header's END block and fill ⌈|BITPIX|/8 · Π NAXISn / 2880⌉ blocks). A truncated or malformed file is refused here
 // with its reason: CFITSIO 4.2 leaks its handle when ffopen fails on such a file (scene_fits_fuzz, seed 1).
 // radchain reads the primary image only: a file whose image is in an extension (NAXIS = 0 here) is refused.
+// Render's limit on a scene's side: a larger declared size is refused before anything is allocated (a 389 kB PNG
+// may declare 20000² pixels).
+constexpr long long max_image_side_px = 16384;
+
 void check_fits_structure(const std::string& path) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
@@ -361,8 +366,7 @@ void check_fits_structure(const std::string& path) {
       refuse("BITPIX = " + std::to_string(bitpix) + ": not a FITS pixel type");
     if (i == 2 && value[2] == 0) refuse("the primary HDU holds no image (NAXIS = 0); images in extensions are not read");
     if (i == 2 && value[2] != 2) refuse("not a 2-D image (NAXIS = " + std::to_string(value[2]) + ")");
-    constexpr long long max_side_px = 16384;  // render's limit: larger claims are refused before anything is allocated
-    if (i >= 3 && (value[i] < 1 || value[i] > max_side_px))
+    if (i >= 3 && (value[i] < 1 || value[i] > max_image_side_px))
       refuse(std::string(mandatory[i]) + " = " + std::to_string(value[i]) + ": 1 to 16384 pixels a side");
   }
   const std::uintmax_t data_bytes = static_cast<std::uintmax_t>(std::llabs(value[1]) / 8) * static_cast<std::uintmax_t>(value[3]) *
@@ -406,10 +410,19 @@ ImageFile read_fits(const std::string& path) {
 }  // namespace
 
 ImageFile read_image(const std::string& path, PixelValues values) {
+  // A FIFO or a device would block or stream without end inside the decoder.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw std::runtime_error("cannot read \"" + path + "\": not a regular file (missing, or a directory, FIFO or device)");
   if (is_fits_path(path)) return read_fits(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) oiio_failure("cannot read", path, {});
   const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width < 1 || spec.height < 1 || spec.width > max_image_side_px || spec.height > max_image_side_px ||
+      spec.nchannels < 1 || spec.nchannels > 4)
+    throw std::runtime_error(fmt::format("cannot read \"{}\": it declares {} × {} pixels of {} channels: 1 to {} pixels a side "
+                                         "and 1 to 4 channels are read",
+                                         path, spec.width, spec.height, spec.nchannels, max_image_side_px));
   ImageFile file;
   file.format = in->format_name();
   file.pixel_type = spec.format.c_str();
@@ -535,7 +548,7 @@ void write_preview(const std::string& path, const Image& image, const PreviewOpt
       wide[static_cast<std::size_t>(y) * w + x] = static_cast<std::uint16_t>(std::lround(display(image(x / up, y / up)) * top));
   auto out = OIIO::ImageOutput::create(path);
   if (!out) oiio_failure("cannot write", path, {});
-  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
+  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete
   const OIIO::TypeDesc type = png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
   OIIO::ImageSpec spec(w, h, 1, type);
   spec.attribute("Software", "radchain render");
@@ -558,7 +571,7 @@ void write_png16(const std::string& path, const Image& image) {
     values[i] = static_cast<std::uint16_t>(std::lround(std::clamp(static_cast<double>(image.pixels[i]), 0.0, 1.0) * 65535.0));
   auto out = OIIO::ImageOutput::create(path);
   if (!out) oiio_failure("cannot write", path, {});
-  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete (issue 18)
+  AtomicFile file(path, "output image");  // written to a temporary, renamed when complete
   OIIO::ImageSpec spec(image.width, image.height, 1, OIIO::TypeDesc::UINT16);
   spec.attribute("png:compressionLevel", 9);
   if (!out->open(file.temporary_path(), spec) || !out->write_image(OIIO::TypeDesc::UINT16, values.data()) || !out->close())

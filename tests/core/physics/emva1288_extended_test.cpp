@@ -1,4 +1,4 @@
-// The extended-scene functions of physics/emva1288.hpp (issue 14, item 3) by hand: the pixel's projected solid
+// The extended-scene functions of physics/emva1288.hpp by hand: the pixel's projected solid
 // angle π(1 − ε²)/(4N²), the uniform-scene noise variance with binning and co-adds (EMVA 1288 eqs. 5, 6, 18),
 // the responsivity k and the saturation radiance.
 #include "radchain/physics/emva1288.hpp"

@@ -1,4 +1,4 @@
-// MTF budget factors (physics/mtf.hpp, issue 14) and the GIQE (physics/giqe.hpp) against closed forms and
+// MTF budget factors (physics/mtf.hpp) and the GIQE (physics/giqe.hpp) against closed forms and
 // hand-computed values of the published equations.
 #include "radchain/physics/giqe.hpp"
 #include "radchain/physics/mtf.hpp"
@@ -17,7 +17,7 @@ constexpr double um = 1e-6;
 double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
 TEST(MtfBudget, DiffractionTimesPixelAtNyquistForSentinel2Band4) {
-  // Issue 14: "0.373 at Nyquist where diffraction × pixel gives 0.494" for the Sentinel-2 10 m band: λ = 665 nm,
+  // Diffraction × pixel at Nyquist: 0.494, not the linear model's 0.373, for the Sentinel-2 10 m band: λ = 665 nm,
   // f/4 (f' = 600 mm, D = 150 mm), p = 7.5 µm. By hand: x = λN/(2p) = 0.177333, Goodman's
   // (2/π)[acos x − x√(1−x²)] = 0.775401, × 2/π = 0.493636.
   const double p = 7.5 * um, nyq = nyquist_frequency_per_m(p);

@@ -236,6 +236,9 @@ class Chain {
   // Resolves each solve's unknown and margins once, and the results that echo the solved values, in the order
   // of `solves` (load_sensor).
   void resolve_solves(const std::vector<ResultId>& echo_ids);
+  // Forward only from now on (`--no-solve`, Solving::forward_only): the [[solve]] entries are dropped, every unknown
+  // keeps the value it has (the file's, or --set's) and its result still echoes it; no criterion is driven to zero.
+  void drop_solves();
 
   // The one [[solve]] when its unknown is a target's magnitude and its one criterion inverts through the noise
   // equation from the faint bracket end (solver.cpp): what that closed form reads. A sweep factors a grid of such
@@ -314,7 +317,12 @@ struct Override {
   std::string value;
 };
 
+// What a loaded chain does with its [[solve]] entries: performs them, or evaluates forward only (`--no-solve`:
+// Chain::drop_solves()).
+enum class Solving { as_written, forward_only };
+
 // Parses, validates and builds. Throws InputError for any bad input (file, line, key, what is accepted).
-Chain load_sensor(const std::string& path, const std::vector<Override>& overrides = {});
+Chain load_sensor(const std::string& path, const std::vector<Override>& overrides = {},
+                  Solving solving = Solving::as_written);
 
 }  // namespace radchain

@@ -1,5 +1,5 @@
 #pragma once
-// A stage's throughput as a list of tabulated curves (issue 13 item 2): `transmittance_curve = ["m1.csv", "m2.csv",
+// A stage's throughput as a list of tabulated curves: `transmittance_curve = ["m1.csv", "m2.csv",
 // "filter.csv"]`, `qe_curve = ["window.csv", "qe.csv"]`. Validation multiplies the list into the key's spectrum
 // (schema.cpp); these helpers give each component, and the product, as a result: its mean over a band,
 //   τ̄_k = ∫_a^b τ_k(λ) dλ / (b − a),

@@ -14,7 +14,8 @@ namespace radchain {
 
 // load_sensor() of a sensor file's text (Python's radchain.loads): `path` names it in messages and is where
 // relative data files are looked for first (beside it). Throws InputError.
-Chain load_sensor_text(const std::string& text, const std::string& path, const std::vector<Override>& overrides = {});
+Chain load_sensor_text(const std::string& text, const std::string& path, const std::vector<Override>& overrides = {},
+                       Solving solving = Solving::as_written);
 
 const Schema& sensor_table_schema();
 // A [[solve]] entry. The bracket's unit is the unknown's: `unknown` is that parameter's spec (nullptr: a plain

@@ -101,7 +101,7 @@ inline constexpr Term detector_nu_half_contrast{"detector.nu_half_contrast", "m-
 inline constexpr Term detector_system_element{"detector.system_element", "m", "system resolution element V_s in the focal plane"};
 inline constexpr Term detector_line_length{"detector.line_length", "m", "length of the detector line l_D"};
 
-// What render and validate read of a detector and a ground target (issue 12: any detector that publishes these
+// What render and validate read of a detector and a ground target (any detector that publishes these
 // renders; saturation capacity and pixel pitch are terms of their own, below)
 inline constexpr Term detector_adc_bits{"detector.adc_bits", "1", "ADC resolution N (bits)"};
 inline constexpr Term detector_dark_rate{"detector.dark_rate", "electron s-1", "dark current of one pixel"};
@@ -114,7 +114,7 @@ inline constexpr Term detector_saturation_exposure{"detector.saturation_exposure
 inline constexpr Term target_background_reflectance{"target.background_reflectance", "1",
                                                     "reflectance ρ_b of the background around a ground target"};
 
-// Datasheet detectors and telescopes (issue 13)
+// Datasheet detectors and telescopes
 inline constexpr Term detector_peak_pixel_fill{"detector.peak_pixel_fill", "1",
                                                "brightest pixel's charge / saturation capacity (> 1: saturated)"};
 inline constexpr Term detector_saturation_capacity{"detector.saturation_capacity", "electron",
@@ -132,7 +132,7 @@ inline constexpr Term atmosphere_airmass{"atmosphere.airmass", "1", "airmass X o
 inline constexpr Term atmosphere_seeing_fwhm{"atmosphere.seeing_fwhm", "rad", "seeing FWHM at the line of sight's airmass"};
 inline constexpr Term atmosphere_sky_brightness{"atmosphere.sky_brightness", "1",
                                                 "sky surface brightness in AB mag/arcsec² as measured at the site"};
-// Moving targets (issue 13 item 7): streak lengths per exposure and the PSF they smear, for render and validate
+// Moving targets: streak lengths per exposure and the PSF they smear, for render and validate
 inline constexpr Term detector_target_streak_pixels{"detector.target_streak_pixels", "1",
                                                     "length of the moving target's streak per exposure in pixels as read out (binned)"};
 inline constexpr Term detector_star_streak_pixels{"detector.star_streak_pixels", "1",
@@ -151,7 +151,7 @@ inline constexpr Term criterion_required_quality{"criteria.*.required_quality", 
 inline constexpr Term criterion_wavelength{"criteria.*.wavelength", "m", "wavelength of the MTF match"};
 inline constexpr Term criterion_ground_element{"criteria.*.ground_element", "m", "ground resolution element δV"};
 
-// Earth-observation geometry (issue 14)
+// Earth-observation geometry
 inline constexpr Term platform_roll{"platform.roll", "rad", "look angle about the along-track axis (across-track)"};
 inline constexpr Term platform_pitch{"platform.pitch", "rad", "look angle about the across-track axis (along-track)"};
 inline constexpr Term platform_slant_range{"platform.slant_range", "m",
@@ -171,7 +171,7 @@ inline constexpr Term criterion_gsd_along_track{"criteria.*.gsd_along_track", "m
                                                 "along-track ground sample distance at the look"};
 inline constexpr Term criterion_niirs{"criteria.*.niirs", "1", "predicted NIIRS (General Image Quality Equation)"};
 inline constexpr Term criterion_rer{"criteria.*.rer", "1", "relative edge response of the system MTF (per sample)"};
-// Radiometry of Earth-observation cameras (issue 14, item 3): an extended scene counted by étendue in a
+// Radiometry of Earth-observation cameras: an extended scene counted by étendue in a
 // datasheet detector; the SNR at a reference radiance as mission requirements state it (band-averaged
 // spectral radiance, W m-2 sr-1 µm-1 in the documents; SI here)
 inline constexpr Term target_reflectance{"target.reflectance", "1", "Lambertian reflectance ρ of a ground target"};
@@ -190,7 +190,7 @@ inline constexpr Term detector_noise_equivalent_reflectance{"detector.noise_equi
                                                             "at the target's sun angle"};
 inline constexpr Term detector_saturation_radiance{"detector.saturation_radiance", "W m-2 sr-1 m-1",
                                                    "band-averaged spectral radiance that fills the well or the ADC"};
-// What `render` needs to draw an Earth scene with a datasheet detector (issue 14, item 8): the scene's pixel
+// What `render` needs to draw an Earth scene with a datasheet detector: the scene's pixel
 // splits into the ground's light (∝ ρ) and the path radiance, plus the detector's fixed-pattern terms
 inline constexpr Term detector_path_radiance_electrons{"detector.path_radiance_electrons", "electron",
                                                        "the atmosphere's path radiance in the scene's pixel (0 without one)"};
@@ -214,23 +214,23 @@ inline constexpr std::array all{
     detector_signal_irradiance, detector_nee_working, detector_utilisation_ratio, detector_element_size_for_mtf,
     detector_nu_half_contrast, detector_system_element, detector_line_length, criterion_margin, criterion_threshold,
     criterion_required_quality, criterion_wavelength, criterion_ground_element,
-    // What render and validate read (issue 12)
+    // What render and validate read
     detector_adc_bits, detector_dark_rate, detector_read_noise_per_pixel, detector_band_min, detector_band_max,
     detector_saturation_exposure, target_background_reflectance,
-    // Earth-observation geometry (issue 14)
+    // Earth-observation geometry
     platform_roll, platform_pitch, platform_slant_range, platform_view_zenith_angle, platform_earth_radius,
     detector_pixel_pitch, criterion_gsd_nadir, criterion_gsd_across_track, criterion_gsd_along_track,
     criterion_niirs, criterion_rer,
-    // Radiometry of Earth-observation cameras (issue 14, item 3)
+    // Radiometry of Earth-observation cameras
     target_reflectance, detector_scene_radiance, detector_reference_radiance, detector_reference_signal_electrons,
     detector_snr_at_reference, detector_noise_equivalent_radiance, detector_noise_equivalent_reflectance,
     detector_saturation_radiance, detector_path_radiance_electrons, detector_binning, detector_exposures,
     detector_prnu, detector_dsnu, detector_psf_weighted,
-    // Datasheet detectors and telescopes (issue 13)
+    // Datasheet detectors and telescopes
     detector_peak_pixel_fill, detector_saturation_capacity, detector_peak_pixel_electrons,
     detector_noise_equivalent_area, detector_system_gain, detector_tdi_stages, target_zero_point_photon_rate,
     target_band_magnitude, atmosphere_airmass, atmosphere_seeing_fwhm, atmosphere_sky_brightness,
-    // Moving targets (issue 13 item 7)
+    // Moving targets
     detector_target_streak_pixels, detector_star_streak_pixels, detector_trailing_loss, detector_psf_fwhm,
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// Limiting magnitudes over a Cartesian grid, factored by axis (issue 15; docs/performance.md, "Factored grids").
+// Limiting magnitudes over a Cartesian grid, factored by axis (docs/performance.md, "Factored grids").
 //
 // A sweep whose one [[solve]] is a target's magnitude that the chain inverts in closed form through the noise
 // equation (solver.cpp's one-end form) has at every point x

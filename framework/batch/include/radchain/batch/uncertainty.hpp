@@ -38,6 +38,9 @@ struct UncertaintyOptions {
   std::vector<std::string> vary;      // "key=dist(args)"
   std::vector<std::string> results;   // at least one
   std::size_t samples = 1000;
+  // The error of a Monte Carlo estimate falls as 1/√N: 10⁶ samples put a percentile within 0.1 % of σ. More than
+  // max_samples (gigabytes of samples kept for the percentiles) is refused.
+  static constexpr std::size_t max_samples = 10'000'000;
   std::uint64_t seed = 1;
 };
 

@@ -66,7 +66,7 @@ inline double gaussian_peak_pixel_fraction(double fwhm_px) {
   return g * g;
 }
 
-// ---- Extended scenes (issue 14, item 3): a pixel of an Earth-observation camera looking at a uniform scene ----
+// ---- Extended scenes: a pixel of an Earth-observation camera looking at a uniform scene -----------------------
 // Étendue of one pixel: a pixel of area p² on axis, behind a circular pupil of f-number N (object at infinity),
 // sees the pupil under the projected solid angle Ω = π/(4N²) (1 − ε²) for a central obscuration ε, so
 //   A_pixel Ω = p² π (1 − ε²) / (4 N²)  ≡  A_pupil IFOV² = π D²/4 (1 − ε²) (p/f')²

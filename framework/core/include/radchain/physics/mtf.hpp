@@ -90,7 +90,7 @@ double kolobrodov_eq15_residual(double system_to_detector_ratio, double sinc_roo
 double kolobrodov_system_element_ratio(double sinc_root, double contrast = 0.5);
 inline constexpr double kolobrodov_system_element_ratio_printed = 1.49;
 
-// ---- MTF budget of an Earth-observation camera (issue 14) -------------------------------------------------
+// ---- MTF budget of an Earth-observation camera ------------------------------------------------------------
 // Each factor is the modulus of the transfer function of one blur, frequency in cycles/m; the system MTF is
 // their product (linear shift-invariant cascade: Goodman 2005 ch. 6; R. D. Fiete, Modeling the Imaging Chain of
 // Digital Cameras, SPIE TT92 (2010), ch. 5-6; G. C. Holst, Electro-Optical Imaging System Performance, 5th ed.

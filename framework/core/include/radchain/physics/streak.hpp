@@ -1,5 +1,5 @@
 #pragma once
-// A point target that moves across the focal plane during the exposure (issue 13 item 7): its image is the PSF
+// A point target that moves across the focal plane during the exposure: its image is the PSF
 // convolved with a line segment of length L = ω t f' (angular rate ω relative to where the telescope points,
 // exposure t, focal length f'). With sidereal tracking the target streaks (ω = its rate against the stars); with
 // rate tracking the target stays a point and the stars streak by the same length.

@@ -27,7 +27,7 @@
 //     width sinc(νΔ), Δ = ¼ pixel. Compared with system_mtf() along the edge normal, times the scene's own
 //     pixel box sinc(ν · input sampling).
 // (c) Flat fields: the measured SNR and noise of uniform frames against the chain's noise budget.
-// (d) Streaks (moving targets, issue 13 item 7): PSF-weighted photometry of a streak — the matched filter
+// (d) Streaks (moving targets): PSF-weighted photometry of a streak — the matched filter
 //     F̂ = Σ w_i (e_i − B_i), w_i = f_i / Σ f_j² with f_i the rendered streak's pixel fractions (from the frame's
 //     own expected electrons), which is unbiased (Σ w_i f_i = 1) — over many frames: measured SNR = mean/std of F̂
 //     against the renderer's own law, S / √(Σ w_i² (S f_i + B + N_d + σ_read² + g²/12)), and against the chain's

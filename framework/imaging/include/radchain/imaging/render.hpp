@@ -1,5 +1,5 @@
 #pragma once
-// Image simulation (issue 7): see what the designed sensor would see, and check the model against it.
+// Image simulation: see what the designed sensor would see, and check the model against it.
 //   render_image.hpp   Image, FITS (with the sensor in the header) and PNG/TIFF previews through OpenImageIO
 //   render_space.hpp   a point-target frame (ccd_frame): targets, star field, PSF, shot/dark/read noise, ADC
 //   render_earth.hpp   a pushbroom image of a reflectance map (ccd_line): MTF (FFTW), GSD, NEE noise, ADC
