@@ -26,6 +26,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -213,13 +214,13 @@ class Session {
       else if (n != count) throw std::invalid_argument("sweep: arrays of different lengths");
     }
     check_sweep_size(static_cast<double>(count), allow_large);
-    // The values are copied before they are checked: the caller's arrays may be changed by another thread while the
-    // GIL is released, and a value must not change between its check and its use.
-    std::vector<std::vector<double>> pinned;
+    // The values are copied (block by block, below) before they are checked: the caller's arrays may be changed by
+    // another thread while the GIL is released, and a value must not change between its check and its use.
+    std::vector<std::unique_ptr<double[]>> pinned;
     std::vector<const double*> values;
-    for (const auto& a : arrays) {
-      pinned.emplace_back(a.data(), a.data() + count);
-      values.push_back(pinned.back().data());
+    for (std::size_t p = 0; p < arrays.size(); ++p) {
+      pinned.emplace_back(new double[count]);  // (not zeroed: every value is copied before it is read)
+      values.push_back(pinned.back().get());
     }
     std::string key = no_solve ? "no-solve\n" : "solve\n";
     for (const auto& k : keys) key += "p " + k + "\n";
@@ -238,7 +239,6 @@ class Session {
         evaluator_ = std::make_unique<PointsEvaluator>(std::move(job));
         evaluator_key_ = key;
       }
-      evaluator_->check(values.data(), count);
     }
     const std::size_t n_results = evaluator_->results().size();
     py::array_t<double> out({static_cast<py::ssize_t>(n_results), static_cast<py::ssize_t>(count)});
@@ -249,12 +249,17 @@ class Session {
     std::size_t failed = 0;
     // In blocks, with Python's signal check between them: Ctrl-C (KeyboardInterrupt) stops a long sweep within a
     // block's time (2^18 points: ~0.1 s of solves on 2 cores), and the partial arrays are dropped with the exception.
+    // Each block's values are copied (with the GIL held: no Python thread writes meanwhile) and checked before it runs.
     constexpr std::size_t block = std::size_t{1} << 18;
     for (std::size_t begin = 0; begin < count; begin += block) {
+      const std::size_t end = std::min(count, begin + block);
+      for (std::size_t p = 0; p < arrays.size(); ++p)
+        std::copy(arrays[p].data() + begin, arrays[p].data() + end, pinned[p].get() + begin);
       std::string block_failure;
       {
         py::gil_scoped_release release;
-        failed += evaluator_->run_range(values.data(), count, begin, begin + block, out_data, ok_data, &block_failure);
+        evaluator_->check(values.data(), begin, end);
+        failed += evaluator_->run_range(values.data(), count, begin, end, out_data, ok_data, &block_failure);
       }
       if (failure.empty()) failure = block_failure;
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();

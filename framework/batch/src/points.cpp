@@ -193,12 +193,12 @@ PointsEvaluator::PointsEvaluator(PointsJob job) : job_(std::move(job)), checker_
 
 PointsEvaluator::~PointsEvaluator() = default;
 
-void PointsEvaluator::check(const double* const* values, std::size_t count) const {
+void PointsEvaluator::check(const double* const* values, std::size_t begin, std::size_t end) const {
   Chain& chain = const_cast<Chain&>(checker_);  // (only read: the parameters' specs)
   for (std::size_t p = 0; p < job_.parameters.size(); ++p) {
     const std::string& key = job_.parameters[p];
     const ParamSpec& spec = spec_of(chain, key);
-    for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
       const double v = values[p][i];
       if (spec.in_range(v) && !std::isnan(v) && (spec.type != ParamType::integer || v == std::round(v))) continue;
       check_parameter_value(chain, key, v, "sweep " + key, fmt::format("{}[{}] = {:.17g}", key, i, v));

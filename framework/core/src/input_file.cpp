@@ -20,15 +20,21 @@ InputError input_error(const std::string& path, const std::string& what, const s
   return InputError(SourceLocation{path, 0, 0}, what, "", problem);
 }
 
-// (device, inode) of every input file read, and what it was read as. Worker threads load chains concurrently.
+// Every input file read, by device and inode, with its status-change time and what it was read as. The time tells a
+// file apart from a later one that reuses a deleted input's inode (a long Python session). Worker threads load
+// chains concurrently.
+struct InputSeen {
+  std::string what;
+  timespec changed{};
+};
 std::mutex inputs_mutex;
-std::map<std::pair<dev_t, ino_t>, std::string> inputs;
+std::map<std::pair<dev_t, ino_t>, InputSeen> inputs;
 
 void remember_input(const std::string& path, const std::string& what) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) return;
   const std::lock_guard lock(inputs_mutex);
-  inputs.emplace(std::make_pair(st.st_dev, st.st_ino), what);
+  inputs.insert_or_assign(std::make_pair(st.st_dev, st.st_ino), InputSeen{what, st.st_ctim});
 }
 
 std::string size_text(std::uintmax_t bytes) {
@@ -60,7 +66,10 @@ std::string input_file_kind(const std::string& path) {
   if (::stat(path.c_str(), &st) != 0) return {};
   const std::lock_guard lock(inputs_mutex);
   const auto found = inputs.find(std::make_pair(st.st_dev, st.st_ino));
-  return found == inputs.end() ? std::string() : found->second;
+  if (found == inputs.end() || found->second.changed.tv_sec != st.st_ctim.tv_sec ||
+      found->second.changed.tv_nsec != st.st_ctim.tv_nsec)
+    return {};
+  return found->second.what;
 }
 
 std::string read_input_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {

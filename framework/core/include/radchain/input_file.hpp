@@ -20,9 +20,10 @@ std::ifstream open_input_file(const std::string& path, const std::string& what, 
 // The whole file, with the same checks, and again while reading (a file that grows past max_bytes).
 std::string read_input_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes);
 
-// Every file opened through these is remembered (device and inode) for the life of the process, so that an output
-// that names one of the command's inputs is refused instead of replacing it (AtomicFile). `what` it was read as
-// ("sensor file"), or "" when `path` is none of them.
+// Every file opened through these is remembered (device, inode and status-change time) for the life of the process,
+// so that an output that names one of the command's inputs is refused instead of replacing it (AtomicFile). `what` it
+// was read as ("sensor file"), or "" when `path` is none of them (a new file that reuses a deleted input's inode is
+// not one).
 std::string input_file_kind(const std::string& path);
 
 }  // namespace radchain

@@ -45,8 +45,10 @@ class PointsEvaluator {
 
   const std::vector<std::string>& results() const { return results_; }
   const std::vector<std::string>& result_units() const { return units_; }  // SI units of the results
-  // InputError for the first value that a parameter does not accept ("optics.aperture[17] = -0.1: ...").
-  void check(const double* const* values, std::size_t count) const;
+  // InputError for the first value that a parameter does not accept ("optics.aperture[17] = -0.1: ..."), among the
+  // points [begin, end) (the arrays are the whole ones).
+  void check(const double* const* values, std::size_t begin, std::size_t end) const;
+  void check(const double* const* values, std::size_t count) const { check(values, 0, count); }
   // Evaluates `count` points: values[p][i] is parameter p at point i (SI). Writes result r at point i (SI) to
   // out[r * count + i] and ok[i] (0 where a solve failed: the solved unknown's column is NaN there). Returns the
   // number of points whose solve failed; `failure` gets the first one's message. Values are not checked (check()).
