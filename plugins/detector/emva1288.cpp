@@ -114,6 +114,14 @@ const Schema& schema() {
       integer("tdi_stages", "64").fallback("1").at_least(1).at_most(10000)
           .described("charge-domain TDI stages N: signal and dark × N, read noise once"),
       quantity("pixel_pitch", "m", "4.5 um").needed().above(0).described("native pixel pitch"),
+      // Conventions of other tools, to reproduce their numbers (docs/validation.md); the defaults are EMVA 1288's
+      // noise and the n_eff of the PSF as the pixels sample it.
+      choice("noise_equivalent_area", {"pixel_sampled", "continuous"}).fallback("pixel_sampled")
+          .described("n_eff of a Gaussian PSF (seeing, gaussian_fwhm, jitter): 1/Σf² on the pixel grid, or the "
+                     "continuous 4πσ² = 2.266 (FWHM/p)² of LSST SMTN-002 and the ETCs built on it"),
+      flag("quantisation").fallback("true")
+          .described("count the ADC's quantisation noise 1/(12 K²) e-² per pixel (EMVA 1288 eq. 5); false: leave "
+                     "it out, as tools that model an ideal ADC do"),
       choice("photometry", {"window", "circle", "psf"}).fallback("window")
           .described("window: n×n pixels with the PSF's ensquared energy; circle: a circular aperture of "
                      "aperture_radius with its encircled energy; psf: PSF-weighted, n_eff pixels"),
@@ -154,11 +162,14 @@ class Emva1288 final : public Stage {
         exposures_(p.handle("exposures")), tdi_(p.handle("tdi_stages")), pitch_(p.handle("pixel_pitch")),
         window_(p.handle("window_pixels")), ensquared_(p.handle("ensquared_energy")),
         psf_photometry_(p.text("photometry") == "psf"), circle_photometry_(p.text("photometry") == "circle"),
+        continuous_neff_(p.text("noise_equivalent_area") == "continuous"), quantisation_(p.flag("quantisation")),
         aperture_radius_(p.handle("aperture_radius")), jitter_(p.handle("jitter")), rate_(p.handle("target_rate")),
         moving_(p.given("target_rate")), rate_tracking_(p.text("tracking") == "rate"),
         reference_radiance_(p.handle("reference_radiance")),
         reference_reflectance_(p.handle("reference_reflectance")) {
     if (!(p.get("band_max") > p.get("band_min"))) p.reject("band_max", "must be larger than band_min");
+    if (continuous_neff_ && moving_)
+      p.reject("noise_equivalent_area", "\"continuous\" is the still Gaussian's n_eff; a streak's is taken on the pixel grid");
     if (psf_photometry_ && p.given("window_pixels"))
       p.reject("window_pixels", "is used only with photometry = \"window\" (PSF-weighted photometry uses n_eff pixels)");
     if (psf_photometry_ && p.given("ensquared_energy"))
@@ -323,9 +334,13 @@ class Emva1288 final : public Stage {
     const double n = *window_;
     const double radius_m = circle_photometry_ ? *aperture_radius_ * f : 0.0;
     if (fwhm > 0) {
-      const GaussianIntegrals& g = gaussian_.of(fwhm, binned, pitch, circle_photometry_ ? -radius_m : n * binned);
+      const GaussianIntegrals& g =
+          gaussian_.of(fwhm, binned, pitch, circle_photometry_ ? -radius_m : n * binned, continuous_neff_);
       neff = g.neff, peak_fraction = g.peak_fraction, ensquared = g.ensquared;
     } else if (airy) {
+      if (continuous_neff_)
+        throw params_.problem("noise_equivalent_area", "\"continuous\" is a Gaussian PSF's n_eff (seeing, gaussian_fwhm or "
+                                                       "jitter); an Airy PSF alone has only the pixel-sampled one");
       const double lambda = a.value(*psf_wavelength_), fn = a.value(*f_number_), eps = opt(obscuration_);
       peak_fraction = physics::airy_ensquared_energy(pitch, lambda, fn, eps);
       ensquared = circle_photometry_ ? physics::airy_encircled_energy(radius_m, lambda, fn, eps)
@@ -355,7 +370,7 @@ class Emva1288 final : public Stage {
     if (has_sky_) sky_native = t * qe * pitch * pitch * sky_rate_per_scale_ * a.background_scale();
     const double sky_binned = b * b * tdi * sky_native;
     const double dark_binned = b * b * tdi * *dark_current_ * t;
-    const double quant_var = physics::emva_quantisation_variance_e2(gain);
+    const double quant_var = quantisation_ ? physics::emva_quantisation_variance_e2(gain) : 0.0;
     const double read_var_binned = b * b * (*dark_noise_ * *dark_noise_ + quant_var + *other_ * *other_);
     const double circle_pixels = std::numbers::pi * radius_m * radius_m / (binned * binned);
     const double pixels = psf_photometry_ ? neff : circle_photometry_ ? circle_pixels : n * n;
@@ -366,7 +381,8 @@ class Emva1288 final : public Stage {
     // a streak keeps its ratio to the still image's). 1 × 1 binning: the n_eff above.
     double prnu_neff = neff;
     if (b > 1 && *prnu_ > 0 && (fwhm > 0 || airy)) {
-      const double native = fwhm > 0 ? physics::gaussian_noise_equivalent_area_px(fwhm / pitch)
+      const double native = fwhm > 0 ? (continuous_neff_ ? physics::gaussian_continuous_noise_equivalent_area_px(fwhm / pitch)
+                                                         : physics::gaussian_noise_equivalent_area_px(fwhm / pitch))
                                      : native_airy_neff_.of(pitch, a.value(*psf_wavelength_), a.value(*f_number_), opt(obscuration_));
       prnu_neff = native * neff / static_neff;
     }
@@ -543,7 +559,7 @@ class Emva1288 final : public Stage {
       reference = (*reference_reflectance_ * surface_native / a.value(*reflectance_) + path_native) / k;
 
     const double dark_native = tdi * *dark_current_ * t;
-    const double quant_var = physics::emva_quantisation_variance_e2(gain);
+    const double quant_var = quantisation_ ? physics::emva_quantisation_variance_e2(gain) : 0.0;
     const double floor_native = *dark_noise_ * *dark_noise_ + quant_var + *other_ * *other_ + dark_native;
     auto noise_of = [&](double signal1) {
       return std::sqrt(physics::emva_uniform_scene_variance_e2(signal1, floor_native, *dsnu_, *prnu_, b, m, tdi));
@@ -632,10 +648,11 @@ class Emva1288 final : public Stage {
     double neff = 0, peak_fraction = 0, ensquared = 0;
   };
   struct GaussianMemo {
-    const GaussianIntegrals& of(double fwhm_m, double binned_m, double pitch_m, double aperture_m) {
+    const GaussianIntegrals& of(double fwhm_m, double binned_m, double pitch_m, double aperture_m, bool continuous) {
       const std::array<double, 4> key{fwhm_m, binned_m, pitch_m, aperture_m};
       if (key != key_ || !valid_) {
-        value_.neff = physics::gaussian_noise_equivalent_area_px(fwhm_m / binned_m);
+        value_.neff = continuous ? physics::gaussian_continuous_noise_equivalent_area_px(fwhm_m / binned_m)
+                                 : physics::gaussian_noise_equivalent_area_px(fwhm_m / binned_m);
         value_.peak_fraction = physics::gaussian_peak_pixel_fraction(fwhm_m / pitch_m);
         value_.ensquared = aperture_m < 0 ? physics::gaussian_encircled_energy(-aperture_m, fwhm_m)
                                           : physics::gaussian_ensquared_energy(aperture_m, fwhm_m);
@@ -652,7 +669,7 @@ class Emva1288 final : public Stage {
 
   const double *qe_, *time_, *gain_, *dark_noise_, *saturation_, *dark_current_, *prnu_, *dsnu_, *other_, *bits_,
       *binning_, *exposures_, *tdi_, *pitch_, *window_, *ensquared_;
-  bool psf_photometry_, circle_photometry_;
+  bool psf_photometry_, circle_photometry_, continuous_neff_, quantisation_;
   std::vector<ComponentMean> qe_components_;
   const double *aperture_radius_, *jitter_, *rate_;
   bool moving_, rate_tracking_;

@@ -418,7 +418,8 @@ def uncertainty(path, vary, results, samples: int = 1000, seed: int = 1, set: di
 
 def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True):
     """Sensor files and folders (their *.toml) on all cores, as `radchain catalogue`: DataFrame of sensor, result,
-    computed, reference, unit, delta, delta_pct, check, note. df.attrs["exit_code"] is the command's (0 all held,
+    kind (published / peer / paper / internal / unstated for an [expected] check; solve; criterion), computed,
+    reference, tolerance (the deviation the check allows, in the row's unit), unit, delta, delta_pct, check, note. df.attrs["exit_code"] is the command's (0 all held,
     1 a check failed, 2 a file was bad input), df.attrs["errors"] the bad files' one-line messages."""
     if isinstance(inputs, str):
         inputs = [inputs]

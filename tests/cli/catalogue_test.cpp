@@ -3,6 +3,7 @@
 #include "cli_helpers.hpp"
 #include "radchain/batch/catalogue.hpp"
 #include "radchain/error.hpp"
+#include "radchain/sensor_file.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -13,7 +14,7 @@ namespace {
 using namespace radchain;
 using namespace radchain::test;
 
-enum { sensor, result, computed, reference, unit, delta, delta_pct, check, note };
+enum { sensor, result, kind, computed, reference, tolerance, unit, delta, delta_pct, check, note };
 
 TEST(Catalogue, RowsOfTheSbvSensor) {
   Chain chain = load_sensor(sbv_file);
@@ -25,6 +26,8 @@ TEST(Catalogue, RowsOfTheSbvSensor) {
   // To the last bit (the text table shows 6 digits; CSV, JSON and shards carry the double).
   EXPECT_EQ(std::stod(rows[0][computed]), report.value("target.magnitude").value());
   EXPECT_EQ(rows[0][reference], "15.55");
+  EXPECT_EQ(rows[0][kind], "paper");       // the file says: kind = "paper"
+  EXPECT_EQ(rows[0][tolerance], "0.05");   // the deviation the check allows
   EXPECT_EQ(rows[0][unit], "");
   EXPECT_EQ(rows[0][check], "ok");
   EXPECT_EQ(rows[0][note], "Pan 2010 Table 2 (design spec 15.5)");
@@ -53,17 +56,17 @@ TEST(Catalogue, FailingExpectationExitsWith1) {
   EXPECT_NE(wrong.find("15.5565"), std::string::npos) << wrong;
   EXPECT_NE(wrong.find("14"), std::string::npos) << wrong;
   EXPECT_NE(wrong.find("FAIL"), std::string::npos) << wrong;
-  EXPECT_NE(r.out.find("2 sensor files, 2 checks: 1 FAILED"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2 sensor files, 2 checks (2 paper): 1 FAILED"), std::string::npos) << r.out;
 }
 
 TEST(Catalogue, AllPassingExitsWith0) {
   Scratch scratch;
   const CliResult r = run_cli(scratch, "catalogue '" + sbv_file + "' --format csv");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  const std::string header = "sensor,result,computed,reference,unit,delta,delta_pct,check,note\n";
+  const std::string header = "sensor,result,kind,computed,reference,tolerance,unit,delta,delta_pct,check,note\n";
   EXPECT_EQ(r.out.substr(0, header.size()), header);
-  EXPECT_EQ(r.out.substr(header.size(), 32), "msx-sbv,target.magnitude,15.5565");  // 15.55650450641426: every digit
-  EXPECT_NE(r.out.find(",15.55,,+0.006505,+0.0418,ok,Pan 2010 Table 2 (design spec 15.5)\n"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.substr(header.size(), 38), "msx-sbv,target.magnitude,paper,15.5565");  // 15.55650450641426: every digit
+  EXPECT_NE(r.out.find(",15.55,0.05,,+0.006505,+0.0418,ok,Pan 2010 Table 2 (design spec 15.5)\n"), std::string::npos) << r.out;
   EXPECT_EQ(count_lines(r.out), 2u);
 }
 
@@ -87,7 +90,48 @@ TEST(Catalogue, BadInputFileExitsWith2AndTheOthersStillRun) {
   EXPECT_TRUE(j["rows"][1]["computed"].is_null());
   EXPECT_EQ(j["rows"][2]["check"], "FAIL");
   EXPECT_EQ(j["exit_code"], 2);
-  EXPECT_EQ(j["summary"], "3 sensor files, 2 checks: 1 FAILED, 1 file with bad input");
+  EXPECT_EQ(j["summary"], "3 sensor files, 2 checks (2 paper): 1 FAILED, 1 file with bad input");
+}
+
+// The tolerance column is the deviation the check allows: the larger of the absolute and the relative tolerance,
+// in the row's unit; a file that does not say what its reference is shows "unstated".
+TEST(Catalogue, ToleranceAndKindColumns) {
+  Chain relative = load_sensor_text(
+      sbv_with("tolerance = 0.05, kind = \"paper\",", "rel_tolerance = 0.01,"), sbv_file);
+  const auto rows = catalogue_rows(sbv_file, relative.run());
+  ASSERT_FALSE(rows.empty());
+  EXPECT_EQ(rows[0][kind], "unstated");
+  EXPECT_NEAR(std::stod(rows[0][tolerance]), 0.01 * 15.55, 1e-12);
+  Chain both = load_sensor_text(sbv_with("tolerance = 0.05,", "tolerance = 0.2, rel_tolerance = 0.01,"), sbv_file);
+  EXPECT_NEAR(std::stod(catalogue_rows(sbv_file, both.run())[0][tolerance]), 0.2, 1e-12);
+}
+
+// Every check of a bundled file says what its reference is (the catalogue's summary counts them by kind); the
+// validation cases are peers' computations.
+TEST(Catalogue, EveryBundledCheckSaysWhatItIs) {
+  std::size_t checks = 0;
+  for (const char* folder : {"sensors", "examples", "validation"})
+    for (const auto& file : catalogue_files({source_dir + "/" + folder})) {
+      const Chain chain = load_sensor(file);
+      for (const auto& e : chain.expected) {
+        ++checks;
+        EXPECT_NE(e.kind, "") << file << ": " << e.result;
+        if (std::string(folder) == "validation") {
+          EXPECT_EQ(e.kind, "peer") << file << ": " << e.result;
+        }
+      }
+    }
+  EXPECT_GT(checks, 150u);
+}
+
+// One plugin folder reached twice (RADCHAIN_PLUGIN_PATH relative, the build tree's absolute) is one folder: no
+// plugin is reported as shadowed by itself.
+TEST(Catalogue, APluginFolderNamedTwiceShadowsNothing) {
+  Scratch scratch;
+  const CliResult r = run_shell(scratch, "cd '" RADCHAIN_BINARY_DIR "' && RADCHAIN_PLUGIN_PATH=plugins '" RADCHAIN_CLI
+                                         "' catalogue '" + sbv_file + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
 }
 
 TEST(Catalogue, FailedSolveIsAFailedCheck) {
@@ -112,7 +156,7 @@ TEST(Catalogue, SetAppliesToEveryFile) {
   const CliResult r = run_cli(scratch, "catalogue '" + sbv_file + "' --set 'optics.aperture=\"30 cm\"' --format csv");
   // Pan 2010 Table 2: "about 17" at 30 cm; the check against 15.55 fails.
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_NE(r.out.find("msx-sbv,target.magnitude,17.06"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("msx-sbv,target.magnitude,paper,17.06"), std::string::npos) << r.out;
 }
 
 TEST(Catalogue, FilesOfAFolderAreSorted) {
@@ -120,10 +164,13 @@ TEST(Catalogue, FilesOfAFolderAreSorted) {
   write_text(scratch / "b.toml", read_text(sbv_file));
   write_text(scratch / "a.toml", read_text(sbv_file));
   write_text(scratch / "notes.txt", "not a sensor");
+  fs::create_directories(scratch / "peer");
+  write_text(scratch / "peer" / "c.toml", read_text(sbv_file));
   const auto files = catalogue_files({scratch.path().string()});
-  ASSERT_EQ(files.size(), 2u);
+  ASSERT_EQ(files.size(), 3u);  // sub-folders too (validation/<peer>/)
   EXPECT_EQ(fs::path(files[0]).filename(), "a.toml");
   EXPECT_EQ(fs::path(files[1]).filename(), "b.toml");
+  EXPECT_EQ(fs::path(files[2]), scratch / "peer" / "c.toml");
   fs::create_directories(scratch / "empty");
   EXPECT_THROW(catalogue_files({(scratch / "empty").string()}), InputError);
 }
@@ -145,7 +192,7 @@ TEST(Catalogue, TablesAreRowsOnlyWhenAskedFor) {
   ASSERT_EQ(tables.exit_code, 0) << tables.err;
   EXPECT_EQ(plain.out.find(" @ "), std::string::npos);
   EXPECT_EQ(count_lines(tables.out), count_lines(plain.out) + 6 * 3);
-  const std::string cell = "target.magnitude @ detector.integration_time = 300 s,";
+  const std::string cell = "target.magnitude @ detector.integration_time = 300 s,,";  // a table cell has no kind
   ASSERT_NE(tables.out.find(cell), std::string::npos) << tables.out;
 
   const CliResult run = run_cli(scratch, "run --format json '" + rubin_r + "'");

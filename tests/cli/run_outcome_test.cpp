@@ -70,7 +70,8 @@ TEST(RunOutcome, ASaturatedPixelFailsTheRunWithoutACriterion) {
   const CliResult catalogue = run_cli(scratch, "catalogue '" + file.string() + "'");
   EXPECT_EQ(catalogue.exit_code, 1) << catalogue.out;
   EXPECT_NE(catalogue.out.find("detector.peak_pixel_fill"), std::string::npos) << catalogue.out;
-  EXPECT_NE(catalogue.out.find("2 checks: 1 FAILED"), std::string::npos) << catalogue.out;  // the solve, the pixel
+  // the solve, the pixel
+  EXPECT_NE(catalogue.out.find("2 checks (1 solve, 1 criterion): 1 FAILED"), std::string::npos) << catalogue.out;
 
   // The file's own sensors/msx-sbv.toml: nothing saturates, the run passes.
   EXPECT_EQ(run_cli(scratch, "run '" + sbv_file + "'").exit_code, 0);

@@ -73,6 +73,7 @@ const Case cases[] = {
     {"expected_unknown_result"},
     {"expected_wrong_unit"},
     {"expected_unknown_key"},
+    {"expected_bad_kind"},
     {"expected_tolerance_inf"},
     {"expected_value_nan"},
     {"expected_negative_tolerance"},

@@ -21,7 +21,7 @@ namespace radchain {
 namespace fs = std::filesystem;
 namespace {
 
-enum Column { sensor, result, computed, reference, unit, delta, delta_pct, check, note, column_count };
+enum Column { sensor, result, kind, computed, reference, tolerance, unit, delta, delta_pct, check, note, column_count };
 
 // A value to the last bit (the shortest text that reads back as the same double); text tables show 6 digits
 // (catalogue_layout's text_digits).
@@ -39,14 +39,21 @@ class CatalogueSummary final : public TableSummary {
  public:
   void row(std::size_t, const std::vector<std::string>& cells) override {
     const std::string& c = cells[check];
-    if (c == "ok" || c == "FAIL") ++checks_;
+    if (c == "ok" || c == "FAIL") {
+      ++checks_;
+      ++by_kind_[cells[kind]];
+    }
     if (c == "FAIL") ++failed_;
     if (c == "ERROR") ++errors_;
     if (c == "warning") ++warnings_;
   }
   std::string text(std::size_t points) const override {
-    std::string text = fmt::format("{} sensor file{}, {} check{}: ", points, points == 1 ? "" : "s", checks_,
-                                   checks_ == 1 ? "" : "s");
+    // What the checks are worth: a published figure or a peer's computation is not an internal consistency check.
+    std::vector<std::string> kinds;
+    for (const char* k : {"published", "peer", "paper", "internal", "unstated", "solve", "criterion"})
+      if (const auto it = by_kind_.find(k); it != by_kind_.end()) kinds.push_back(fmt::format("{} {}", it->second, k));
+    std::string text = fmt::format("{} sensor file{}, {} check{}{}: ", points, points == 1 ? "" : "s", checks_,
+                                   checks_ == 1 ? "" : "s", kinds.empty() ? "" : " (" + join(kinds) + ")");
     const std::string warned = warnings_ ? fmt::format(" ({} warning{})", warnings_, warnings_ == 1 ? "" : "s") : "";
     if (failed_ == 0 && errors_ == 0) return text + "all passed" + warned;
     std::vector<std::string> parts;
@@ -57,6 +64,7 @@ class CatalogueSummary final : public TableSummary {
 
  private:
   std::size_t checks_ = 0, failed_ = 0, errors_ = 0, warnings_ = 0;
+  std::map<std::string, std::size_t> by_kind_;
 };
 
 }  // namespace
@@ -66,8 +74,9 @@ std::vector<std::string> catalogue_files(const std::vector<std::string>& inputs)
   for (const auto& input : inputs) {
     std::error_code ec;
     if (fs::is_directory(input, ec)) {
+      // Sub-folders too: validation/ keeps each peer's cases in a folder of its own.
       std::vector<std::string> found;
-      for (const auto& e : fs::directory_iterator(input, ec))
+      for (const auto& e : fs::recursive_directory_iterator(input, ec))
         if (e.is_regular_file() && e.path().extension() == ".toml") found.push_back(e.path().string());
       if (found.empty())
         throw InputError(SourceLocation{input, 0, 0}, "catalogue", "", "the folder holds no sensor files (*.toml)");
@@ -85,9 +94,10 @@ std::vector<std::string> catalogue_files(const std::vector<std::string>& inputs)
 
 TableLayout catalogue_layout() {
   return TableLayout{"catalogue",
-                     {"sensor", "result", "computed", "reference", "unit", "delta", "delta_pct", "check", "note"},
-                     {false, false, true, true, false, true, true, false, false},
-                     {0, 0, 6, 6, 0, 0, 0, 0, 0}};
+                     {"sensor", "result", "kind", "computed", "reference", "tolerance", "unit", "delta", "delta_pct",
+                      "check", "note"},
+                     {false, false, false, true, true, true, false, true, true, false, false},
+                     {0, 0, 0, 6, 6, 3, 0, 0, 0, 0, 0}};
 }
 
 std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, const Report& report,
@@ -116,7 +126,11 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
       }
     }
     const double ref = e.spec.value_si * factor;
+    row[kind] = e.spec.kind.empty() ? "unstated" : e.spec.kind;
     row[reference] = full_precision(ref);
+    // The deviation the check allows, in the row's unit: the larger of the absolute and the relative tolerance.
+    const double checked = e.spec.follows_si.value_or(e.spec.value_si);
+    row[tolerance] = full_precision(std::max(e.spec.tolerance_si, e.spec.rel_tolerance * std::abs(checked)) * factor);
     row[unit] = unit_cell(shown_unit);
     row[check] = e.passed ? "ok" : "FAIL";
     row[note] = e.spec.source;
@@ -140,6 +154,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
     if (covered && s.converged) continue;
     auto row = empty_row(stem);
     row[result] = s.spec.unknown;
+    row[kind] = "solve";
     if (const auto it = index.find(s.spec.unknown); it != index.end() && s.converged) {
       const ResultInfo& info = report.results[it->second];
       row[computed] = full_precision(s.value_si * info.display_factor);
@@ -157,6 +172,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
     if (c.passed) continue;
     auto row = empty_row(stem);
     row[result] = c.section == "detector" ? "detector.peak_pixel_fill" : c.section + ".margin";
+    row[kind] = "criterion";
     if (!std::isnan(c.margin)) row[computed] = full_precision(c.margin);
     row[check] = c.informational ? "info" : "FAIL";
     row[note] = (c.informational ? "informational criterion: " : "criterion fails: ") + c.reason;

@@ -182,7 +182,8 @@ const std::vector<PluginFile>& PluginHost::discovered() const {
         auto [it, inserted] = first_path.emplace(name, file.string());
         if (inserted) {
           found.push_back(PluginFile{name, *kind, file.string()});
-        } else if (it->second != file.string() && impl_->shadow_warnings.insert(file.string()).second) {
+        } else if (it->second != file.string() && !fs::equivalent(it->second, file, ec) &&  // one folder named twice
+                   impl_->shadow_warnings.insert(file.string()).second) {
           std::cerr << fmt::format("radchain: plugin \"{}\" at {} is shadowed by {} (first in the search path wins)\n",
                                    name, file.string(), it->second);
         }

@@ -70,8 +70,9 @@ std::string format_report_text(const Report& report) {
         const double rel = e.spec.value_si != 0 ? (e.computed_si - e.spec.value_si) / std::abs(e.spec.value_si) : 0.0;
         delta = fmt::format("{:+.3g} ({:+.2f} %)", d, 100 * rel);
       }
-      out += fmt::format("  {:<4} {:<40} printed {:<14} computed {:<18} delta {:<22} {}\n", e.passed ? "ok" : "FAIL",
-                         e.spec.result, display_of_expectation(e), computed, delta, e.spec.source);
+      out += fmt::format("  {:<4} {:<40} printed {:<14} computed {:<18} delta {:<22} {}{}\n", e.passed ? "ok" : "FAIL",
+                         e.spec.result, display_of_expectation(e), computed, delta,
+                         e.spec.kind.empty() ? "" : "[" + e.spec.kind + "] ", e.spec.source);
     }
   }
   if (!report.criteria.empty()) {
@@ -138,7 +139,7 @@ std::string format_report_json(const Report& report) {
     expectations.push_back({{"result", e.spec.result}, {"printed", e.spec.as_written}, {"printed_si", e.spec.value_si},
                             {"follows_si", e.spec.follows_si ? nlohmann::ordered_json(*e.spec.follows_si) : nlohmann::ordered_json()},
                             {"computed_si", e.computed_si}, {"tolerance_si", e.spec.tolerance_si},
-                            {"rel_tolerance", e.spec.rel_tolerance}, {"passed", e.passed}, {"source", e.spec.source}});
+                            {"rel_tolerance", e.spec.rel_tolerance}, {"passed", e.passed}, {"kind", e.spec.kind}, {"source", e.spec.source}});
   auto& tables = j["tables"] = nlohmann::ordered_json::array();
   for (const auto& t : report.tables) {
     nlohmann::ordered_json table{{"name", t.spec.name}, {"vary", t.spec.vary}, {"values", t.spec.values_written},

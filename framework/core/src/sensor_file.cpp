@@ -421,6 +421,7 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
         const std::string& written = params.entry("follows").as_written;
         e.follows_as_written = written.size() >= 2 && written.front() == '"' ? written.substr(1, written.size() - 2) : written;
       }
+      if (params.has("kind")) e.kind = params.text("kind");
       e.source = params.text("source");
       chain.expected.push_back(e);
     }
@@ -554,6 +555,9 @@ Schema expected_entry_schema(const std::string& si_unit) {
           .described("an erratum: what the source's own formula and inputs give (checked instead of value; docs/ explain)"),
       quantity_or_number("tolerance", si_unit, "1").at_least(0).finite().described("absolute tolerance"),
       number("rel_tolerance", "0.01").at_least(0).finite().described("relative tolerance (either or both)"),
+      choice("kind", {"published", "peer", "paper", "internal"})
+          .described("what the reference is: the instrument's published figure, a peer tool's computation, a paper's "
+                     "worked example, or radchain against itself"),
       text("source", "Kolobrodov 1996, p. 4").described("where the value is published (document, table or page)"),
   };
 }

@@ -66,6 +66,25 @@ TEST(PhysicsEmva1288, NoiseEquivalentAreaAgainstNumericalPsfIntegration) {
   EXPECT_NEAR(gaussian_noise_equivalent_area_px(0.05), 1.0, 1e-6);
 }
 
+// The continuous Gaussian's 1/∫∫f² by numerical integration (independent of the closed form): 4πσ² = 2.266 FWHM².
+TEST(PhysicsEmva1288, ContinuousNoiseEquivalentArea) {
+  for (double fwhm : {0.5, 2.0, 4.15, 10.0}) {
+    const double sigma = fwhm / (2 * std::sqrt(2 * std::numbers::ln2));
+    double integral = 0;  // ∫ g(x)² dx of the normalised 1-D Gaussian, midpoint rule over ±10σ
+    const int steps = 20000;
+    const double dx = 20 * sigma / steps;
+    for (int i = 0; i < steps; ++i) {
+      const double x = -10 * sigma + (i + 0.5) * dx;
+      const double g = std::exp(-x * x / (2 * sigma * sigma)) / (sigma * std::sqrt(2 * std::numbers::pi));
+      integral += g * g * dx;
+    }
+    EXPECT_NEAR(gaussian_continuous_noise_equivalent_area_px(fwhm) * integral * integral, 1.0, 1e-9) << fwhm;
+  }
+  EXPECT_NEAR(gaussian_continuous_noise_equivalent_area_px(1.0), 2.266, 5e-4);  // SMTN-002's coefficient
+  // The pixel-sampled n_eff tends to it (plus the pixel's 1/12 per axis) for FWHM ≫ 1.
+  EXPECT_NEAR(gaussian_noise_equivalent_area_px(40.0) / gaussian_continuous_noise_equivalent_area_px(40.0), 1.0, 2e-3);
+}
+
 TEST(PhysicsEmva1288, PeakPixelFraction) {
   // erf(1/(2√2 σ))²; FWHM 2 px: σ = 0.8493, erf(0.41628)² = 0.44375² = 0.19691.
   EXPECT_NEAR(gaussian_peak_pixel_fraction(2.0), std::pow(std::erf(1 / (2 * std::sqrt(2.0) * 0.849322)), 2), 1e-6);

@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace {
 
@@ -89,6 +91,29 @@ TEST(EdgeResponse, GaussianMtfGivesTheErrorFunctionEdge) {
   EXPECT_NEAR(edge_response(mtf, 0.3, 6.0), normal_cdf(0.3 / sigma), 1e-9);
   EXPECT_NEAR(relative_edge_response(mtf, 6.0), 2 * normal_cdf(0.5 / sigma) - 1, 1e-9);
   EXPECT_NEAR(edge_overshoot(mtf, 6.0), normal_cdf(1.25 / sigma), 1e-9);
+}
+
+// pyBSM's rule (physics::edge_response_pybsm) by hand: its trapezoid over w_k = k c/50/ifov + 1e-6 cycles/rad,
+// k = 0…49, written out here as pyBSM's metrics.functional.edge_response does it with numpy.trapezoid.
+TEST(EdgeResponse, PybsmRuleByHand) {
+  const double sigma = 0.45, cutoff = 1.6, ifov = 1.2e-6;
+  auto mtf = [&](double u) { return std::exp(-2 * pi * pi * sigma * sigma * u * u) * std::max(0.0, 1 - u / cutoff); };
+  for (double x : {-0.5, 0.5, 1.25, 2.0}) {
+    std::vector<double> w(50), y(50);
+    for (int k = 0; k < 50; ++k) {
+      w[k] = k * (cutoff / ifov) / 50 + 1e-6;
+      y[k] = mtf(k * cutoff / 50) / w[k] * std::sin(2 * pi * w[k] * ifov * x);
+    }
+    double trapezoid = 0;
+    for (int k = 1; k < 50; ++k) trapezoid += (w[k] - w[k - 1]) * (y[k] + y[k - 1]) / 2;
+    EXPECT_NEAR(edge_response_pybsm(mtf, x, cutoff, ifov), 0.5 + trapezoid / pi, 1e-14) << x;
+  }
+  EXPECT_NEAR(relative_edge_response_pybsm(mtf, cutoff, ifov),
+              edge_response_pybsm(mtf, 0.5, cutoff, ifov) - edge_response_pybsm(mtf, -0.5, cutoff, ifov), 1e-15);
+  // A Gaussian edge rises monotonically on [1, 3]: H is ER(1.25); the pyBSM rule stops short of the cut-off, so it
+  // differs from the converged integral by more than Simpson's rule does, but by less than 1e-2 here.
+  EXPECT_EQ(edge_overshoot_pybsm(mtf, cutoff, ifov), edge_response_pybsm(mtf, 1.25, cutoff, ifov));
+  EXPECT_NEAR(relative_edge_response_pybsm(mtf, cutoff, ifov), relative_edge_response(mtf, cutoff, 4000), 1e-2);
 }
 
 TEST(EdgeResponse, PixelApertureAloneGivesAOnePixelRamp) {

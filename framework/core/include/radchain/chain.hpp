@@ -85,6 +85,10 @@ struct Expectation {
   std::optional<double> follows_si;
   std::string follows_as_written;
   std::string display_unit;     // the unit it was written in ("" = the result's display unit)
+  // What the reference is: "published" (the instrument's datasheet, calibration or measured figure), "peer" (another
+  // tool's computation from the same inputs), "paper" (a paper's worked example), "internal" (radchain against
+  // itself: a closed form, another path); "" when the file does not say.
+  std::string kind;
   std::string source;
   SourceLocation where;
 };

@@ -2,6 +2,7 @@
 #include "radchain/physics/giqe.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -80,6 +81,36 @@ double edge_overshoot(const std::function<double(double)>& mtf, double max_frequ
     previous = er;
   }
   return monotonic ? edge_response(mtf, 1.25, max_frequency, intervals) : peak;
+}
+
+double edge_response_pybsm(const std::function<double(double)>& mtf, double x_samples, double cutoff_samples,
+                           double ifov_rad) {
+  require_positive(cutoff_samples, "edge response: cut-off frequency");
+  require_positive(ifov_rad, "edge response: ifov");
+  constexpr int nodes = 50;
+  constexpr double offset = 1e-6;  // cycles/rad, pyBSM's
+  const double step = cutoff_samples / nodes;
+  double sum = 0, previous_w = 0, previous_y = 0;
+  for (int k = 0; k < nodes; ++k) {
+    const double nu = k * step;
+    const double w = nu / ifov_rad + offset;
+    const double y = mtf(nu) * std::sin(2 * std::numbers::pi * w * ifov_rad * x_samples) / w;
+    if (k > 0) sum += 0.5 * (y + previous_y) * (w - previous_w);
+    previous_w = w, previous_y = y;
+  }
+  return 0.5 + sum / std::numbers::pi;
+}
+
+double relative_edge_response_pybsm(const std::function<double(double)>& mtf, double cutoff_samples, double ifov_rad) {
+  return edge_response_pybsm(mtf, 0.5, cutoff_samples, ifov_rad) - edge_response_pybsm(mtf, -0.5, cutoff_samples, ifov_rad);
+}
+
+double edge_overshoot_pybsm(const std::function<double(double)>& mtf, double cutoff_samples, double ifov_rad) {
+  std::array<double, 9> er{};
+  for (std::size_t i = 0; i < er.size(); ++i) er[i] = edge_response_pybsm(mtf, 1.0 + 0.25 * i, cutoff_samples, ifov_rad);
+  bool rising = true;
+  for (std::size_t i = 1; i < er.size(); ++i) rising = rising && er[i] - er[i - 1] > 0;
+  return rising ? er[1] : *std::max_element(er.begin(), er.end());
 }
 
 }  // namespace radchain::physics

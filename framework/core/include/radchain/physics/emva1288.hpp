@@ -59,6 +59,13 @@ inline double gaussian_noise_equivalent_area_px(double fwhm_px) {
   return 1.0 / (sum * sum);
 }
 
+// The continuous Gaussian's n_eff = 1/∫∫f² = 4π σ² = π FWHM²/(2 ln 2) = 2.266 FWHM² (pixels; no pixel sampling):
+// LSST SMTN-002's "n_eff = 2.266 (FWHM_eff/pixel scale)²" and the exposure-time calculators built on it. The
+// pixel-sampled n_eff above tends to it for FWHM ≫ 1 and is larger by about one pixel's worth for a few-pixel PSF.
+inline double gaussian_continuous_noise_equivalent_area_px(double fwhm_px) {
+  return std::numbers::pi * fwhm_px * fwhm_px / (2.0 * std::numbers::ln2);
+}
+
 // The fraction of a Gaussian PSF in its brightest pixel (centred on the pixel): erf(1/(2√2 σ))².
 inline double gaussian_peak_pixel_fraction(double fwhm_px) {
   const double sigma = fwhm_px / (2.0 * std::sqrt(2.0 * std::numbers::ln2));

@@ -55,4 +55,17 @@ double relative_edge_response(const std::function<double(double)>& mtf, double m
 // GIQE-4 overshoot H: max ER on [1, 3] samples if the edge is not monotonic there, else ER(1.25).
 double edge_overshoot(const std::function<double(double)>& mtf, double max_frequency, int intervals = 4000);
 
+// pyBSM's rule for the same integrals (Kitware/pybsm @ 6a6d23d, metrics.functional.edge_response, IBSM eq. 3-57),
+// to reproduce its numbers (validation/pybsm): the MTF at the 50 nodes ν_k = k c/50, k = 0…49, of its 101-point
+// grid over ±c (c the cut-off in cycles/sample; otf.functional.slice_otf stops before c), and the trapezoid over
+// w_k = ν_k/ifov + 10⁻⁶ cycles/rad (pyBSM's offset that keeps 1/w finite, an angular frequency, hence ifov):
+// ER(x) = ½ + (1/π) trapz_k[MTF(ν_k) sin(2π w_k ifov x)/w_k]. It stops 2 % short of the cut-off and samples
+// 50 points: RER 1.6e-4 to 3e-4 above the converged integral on pyBSM's own cases.
+double edge_response_pybsm(const std::function<double(double)>& mtf, double x_samples, double cutoff_samples,
+                           double ifov_rad);
+double relative_edge_response_pybsm(const std::function<double(double)>& mtf, double cutoff_samples, double ifov_rad);
+// GIQE-4's overshoot as pyBSM samples it (metrics.functional.edge_height_overshoot): ER at x = 1, 1.25, …, 3;
+// ER(1.25) if every step rises, else the maximum.
+double edge_overshoot_pybsm(const std::function<double(double)>& mtf, double cutoff_samples, double ifov_rad);
+
 }  // namespace radchain::physics
