@@ -60,12 +60,42 @@ TEST(RenderCli, DatasheetImagerRendersAndValidates) {
   EXPECT_NE(big.err.find("native reads"), std::string::npos) << big.err;
   EXPECT_EQ(std::count(big.err.begin(), big.err.end(), '\n'), 1) << big.err;
   EXPECT_FALSE(fs::exists(scratch / "big.fits"));
-  // An output sampling so coarse that the map holds one native sample: no binned pixel, refused, not an empty image.
+  // An output sampling 5000 detector samples wide (a unit slip), refused, not an empty image; so are one of 1e-300 m
+  // (an image of NaN) and a map a thousand times finer than the output.
   const CliResult tiny = run_cli(scratch, "render '" + s2 + "' --set detector.binning=2 --gsd '100 km' --scene-sampling '1 m' --out " +
                                               (scratch / "tiny.fits").string());
   EXPECT_EQ(tiny.exit_code, 2) << tiny.err;
-  EXPECT_NE(tiny.err.find("too few for one 2×2 binned pixel"), std::string::npos) << tiny.err;
+  EXPECT_NE(tiny.err.find("output sampling: 1e+05 m is not within a factor 1000 of the detector sample's 19.65 m"),
+            std::string::npos) << tiny.err;
   EXPECT_FALSE(fs::exists(scratch / "tiny.fits"));
+  const CliResult fine = run_cli(scratch, "render '" + s2 + "' --gsd '1e-300 m' --out " + (scratch / "fine.fits").string());
+  EXPECT_EQ(fine.exit_code, 2) << fine.err;
+  EXPECT_NE(fine.err.find("output sampling: 1e-300 m is not within a factor 1000"), std::string::npos) << fine.err;
+  const CliResult map = run_cli(scratch, "render '" + s2 + "' --gsd '9 km' --scene-sampling '1 m' --out " + (scratch / "map.fits").string());
+  EXPECT_EQ(map.exit_code, 2) << map.err;
+  EXPECT_NE(map.err.find("input sampling: 1 m is not within a factor 1000 of the output sampling 9000 m"), std::string::npos)
+      << map.err;
+  for (const char* name : {"fine.fits", "map.fits"}) EXPECT_FALSE(fs::exists(scratch / name)) << name;
+}
+
+// A sky (with the dark current) that fills the well saturates every pixel: no frame, exit 2 (1e19 e- wrote a
+// black frame, 1e12 e- was an internal error); a typed "nan" magnitude is not "limit".
+TEST(RenderCli, AbsurdFrameRequestsAreBadInput) {
+  Scratch scratch;
+  for (const char* sky : {"1e5 e-", "1e12 e-", "1e19 e-"}) {
+    const CliResult r = run_cli(scratch, "render '" + sbv_file + "' --sky '" + sky + "' --out " + (scratch / "sky.fits").string());
+    EXPECT_EQ(r.exit_code, 2) << sky << r.err;
+    EXPECT_NE(r.err.find("of sky and dark current per pixel fill the 1e+05 e- well: every pixel saturates"), std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(scratch / "sky.fits"));
+  }
+  const CliResult below = run_cli(scratch, "render '" + sbv_file + "' --sky '5e4 e-' --out " + (scratch / "half.fits").string());
+  EXPECT_EQ(below.exit_code, 0) << below.err;
+  for (const char* target : {"10,10,nan", "inf", "10,10,-inf"}) {
+    const CliResult r = run_cli(scratch, "render '" + sbv_file + "' --target '" + target + "' --out " + (scratch / "t.fits").string());
+    EXPECT_EQ(r.exit_code, 2) << target << r.err;
+    EXPECT_NE(r.err.find("--target: " + std::string(target) + ": expected x,y,magnitude"), std::string::npos) << r.err;
+  }
 }
 
 // Each bad option value: exit 2, nothing on stdout, exactly this one line on stderr.

@@ -74,6 +74,7 @@ const Case cases[] = {
     {"expected_wrong_unit"},
     {"expected_unknown_key"},
     {"expected_bad_kind"},
+    {"curve_list_disjoint"},
     {"expected_tolerance_inf"},
     {"expected_value_nan"},
     {"expected_negative_tolerance"},

@@ -41,7 +41,15 @@ RenderedImage render_space(Chain& chain, const Report& report, const RenderReque
     std::stringstream list(t);
     std::string item;
     try {
-      while (std::getline(list, item, ',')) xym.push_back(item == "limit" ? std::nan("") : std::stod(item));
+      while (std::getline(list, item, ',')) {
+        if (item == "limit") {
+          xym.push_back(std::nan(""));  // the limiting magnitude, filled in by the frame
+          continue;
+        }
+        xym.push_back(std::stod(item));
+        // A typed "nan" or "inf" is not "limit": it would be drawn at the limit or not at all.
+        if (!std::isfinite(xym.back())) throw std::invalid_argument("not a finite number");
+      }
     } catch (const std::exception&) {
       bad_option("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
     }

@@ -290,8 +290,18 @@ void assign_param(Params& params, Params::Entry& entry, const ConfigValue& value
       assign_one(params, entry, item, context, subject);
       entry.numbers.push_back(entry.number);
       entry.texts.push_back(entry.text);
-      if (spec.type == ParamType::spectrum)
+      if (spec.type == ParamType::spectrum) {
+        // Tables that share no wavelength multiply to nothing: a wrong file in the list, the user's to fix.
+        if (product && !(std::min(product->max_wavelength_m(), entry.spectrum->max_wavelength_m()) >
+                         std::max(product->min_wavelength_m(), entry.spectrum->min_wavelength_m())))
+          throw InputError(item.where, params.context(), subject,
+                           fmt::format("{} ({:.5g}-{:.5g} nm) shares no wavelength with the tables before it in the list "
+                                       "({:.5g}-{:.5g} nm): their product is zero everywhere",
+                                       item.as_toml(), 1e9 * entry.spectrum->min_wavelength_m(),
+                                       1e9 * entry.spectrum->max_wavelength_m(), 1e9 * product->min_wavelength_m(),
+                                       1e9 * product->max_wavelength_m()));
         product = product ? std::make_shared<const Spectrum>(product->product(*entry.spectrum, spec.si_unit)) : entry.spectrum;
+      }
     }
     if (product) entry.spectrum = product;
   }

@@ -211,6 +211,15 @@ EarthSceneSetup earth_scene_setup(Chain& chain, const Report& report, const Eart
   if (!(s.output_sampling_m > 0))
     refuse(file, "output sampling",
            "the sensor publishes neither criteria.<name>.gsd_nadir nor criteria.<name>.ground_element: give the output sampling");
+  // An output pixel a thousand times finer or coarser than the detector's sample is a unit slip (1e-300 m gave an
+  // image of NaN), not a rendering.
+  const double design_m = s.binning * (s.pixel_gsd_m > 0 ? s.pixel_gsd_m : s.ground_element_m);
+  if (design_m > 0 && !(s.output_sampling_m >= 1e-3 * design_m && s.output_sampling_m <= 1e3 * design_m))
+    refuse(file, "output sampling", fmt::format("{:.4g} m is not within a factor 1000 of the detector sample's {:.4g} m on the "
+                                                "ground", s.output_sampling_m, design_m));
+  if (!(s.output_sampling_m >= 1e-6 && s.output_sampling_m <= 1e6))
+    refuse(file, "output sampling", fmt::format("{:.4g} m: an Earth scene's pixel lies between 1 um and 1000 km", s.output_sampling_m));
+
   const double detector_bits = result(report, vocabulary::detector_adc_bits).value_or(12.0);
   const int bits = o.adc_bits ? *o.adc_bits : static_cast<int>(detector_bits);
   if (bits < 1 || bits > 31) refuse(file, "ADC bits", "must lie in 1..31");
@@ -336,6 +345,10 @@ Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
 }
 
 Image render_earth_scene(const EarthSceneSetup& s, const Image& reflectance, std::uint64_t seed) {
+  // A map a thousand times finer or coarser than the output is a unit slip, not a scene.
+  if (!(s.input_sampling_m >= 1e-3 * s.output_sampling_m && s.input_sampling_m <= 1e3 * s.output_sampling_m))
+    refuse(s.sensor_file, "input sampling", fmt::format("{:.4g} m is not within a factor 1000 of the output sampling {:.4g} m",
+                                                        s.input_sampling_m, s.output_sampling_m));
   // The output's size and the native reads it sums, refused before any work.
   const int wo = earth_output_size(s, reflectance.width), ho = earth_output_size(s, reflectance.height);
   if (wo < 1 || ho < 1)

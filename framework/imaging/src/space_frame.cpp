@@ -196,6 +196,18 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
   s.sky_electrons = o.sky_electrons_per_pixel ? *o.sky_electrons_per_pixel
                                               : result(report, vocabulary::detector_sky_electrons_per_pixel).value_or(0.0);
   if (!(s.sky_electrons >= 0)) refuse(file, "sky", "must be ≥ 0 electrons per pixel");
+  // A background that fills the well leaves a frame of saturated pixels with nothing to see: no frame to write.
+  if (s.sky_electrons + s.dark_electrons >= s.full_well_electrons)
+    refuse(file, "sky", fmt::format("{:.4g} e- of sky and dark current per pixel fill the {:.4g} e- well: every pixel "
+                                    "saturates and the frame shows nothing",
+                                    s.sky_electrons + s.dark_electrons, s.full_well_electrons));
+  // Each pixel's counts are drawn from their exact law, tabulated over ±12 σ: beyond ~1e11 e- that table outgrows
+  // the sampler (and any real well).
+  constexpr double sampled_electrons_max = 1e11;
+  if (s.sky_electrons + s.dark_electrons + s.flat_field_electrons > sampled_electrons_max)
+    refuse(file, "sky", fmt::format("{:.4g} e- per pixel of sky, dark and flat field: the renderer samples up to {:.0e} e- "
+                                    "per pixel", s.sky_electrons + s.dark_electrons + s.flat_field_electrons,
+                                    sampled_electrons_max));
   // The chain's own system gain K (DN/e-, a datasheet detector) when it publishes one, else full well / 2^bits.
   const auto system_gain = result(report, vocabulary::detector_system_gain);
   s.gain_e_per_dn = o.gain_e_per_dn ? *o.gain_e_per_dn
