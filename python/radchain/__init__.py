@@ -18,6 +18,7 @@ from __future__ import annotations
 import io as _io
 import json as _json
 import numbers as _numbers
+import os as _os
 import warnings as _warnings
 from collections import namedtuple as _namedtuple
 from collections.abc import Mapping as _Mapping
@@ -72,8 +73,33 @@ def _text_of(value) -> str:
     if isinstance(value, (bool, _np.bool_)):
         return "true" if value else "false"
     if isinstance(value, str):
-        return value
+        return _no_nul(value, "a parameter value")
     raise TypeError(f"a parameter value is TOML value text (str) or a number in SI, not {type(value).__name__}")
+
+
+def _no_nul(text: str, what: str) -> str:
+    # The C++ side would cut the text at a NUL and act on (or name) a different key than the one given.
+    if "\0" in text:
+        raise ValueError(f"{what} {text!r} contains a NUL character")
+    return text
+
+
+def _name(value, what: str = "a name") -> str:
+    """A parameter or result name as given: a str ("optics.aperture"); anything else is refused, not str()-ed
+    (3 would become "3", b"x" "b'x'")."""
+    if not isinstance(value, str):
+        raise TypeError(f"{what} is a str such as \"optics.aperture\", not {type(value).__name__} {value!r}")
+    return _no_nul(value, what)
+
+
+def _names(values, what: str = "a result name") -> list:
+    if isinstance(values, str):
+        values = [values]
+    return [_name(v, what) for v in values or []]
+
+
+def _path(value, what: str = "a path") -> str:
+    return _no_nul(_os.fspath(value), what)
 
 
 def _split_sets(set):
@@ -81,9 +107,9 @@ def _split_sets(set):
     texts, numbers = [], []
     for key, value in (set or {}).items():
         if _is_number(value):
-            numbers.append((str(key), float(value)))
+            numbers.append((_name(key, "a parameter key"), float(value)))
         else:
-            texts.append((str(key), _text_of(value)))
+            texts.append((_name(key, "a parameter key"), _text_of(value)))
     return texts, numbers
 
 
@@ -206,6 +232,7 @@ class Session:
         """Sets <section>.<key>: TOML value text ("25 cm", "\\"e490\\"", "true") as `radchain run --set` takes it,
         or a number in SI (checked against the parameter's range). Returns the session. InputError when refused
         (nothing changes then)."""
+        key = _name(key, "a parameter key")
         if key in self._native.solved:
             _warnings.warn(f"a [[solve]] overwrites {key} in run() and solve() (evaluate() uses the value set)",
                            stacklevel=2)
@@ -217,7 +244,7 @@ class Session:
 
     def get(self, key: str) -> float:
         """The current value of a numeric parameter, in SI."""
-        return self._native.get(key)
+        return self._native.get(_name(key, "a parameter key"))
 
     def run(self) -> Result:
         """Every result, the [[solve]] roots and the [[expected]] checks: `radchain run --set ...`."""
@@ -233,7 +260,7 @@ class Session:
 
     def __getitem__(self, name) -> float:
         """A result (SI) as the last run/solve/evaluate left it."""
-        return self._native.value(name)
+        return self._native.value(_name(name, "a result name"))
 
     def sweep(self, parameters: dict, results=None, solve: bool = True, frame: bool = False, allow_large: bool = False):
         """Evaluates the chain at every point, on all cores with the GIL released (C++ lanes and solves).
@@ -248,7 +275,7 @@ class Session:
         """
         if not parameters:
             raise ValueError("sweep: give at least one parameter, e.g. {\"optics.aperture\": numpy.linspace(0.15, 0.3, 16)}")
-        keys = [str(k) for k in parameters]
+        keys = [_name(k, "a parameter key") for k in parameters]
         values = [_np.asarray(v, dtype=_np.float64) for v in parameters.values()]
         shape = _np.broadcast_shapes(*(v.shape for v in values))
         # Refused before the broadcast arrays are made (a typo'd shape would allocate gigabytes first).
@@ -257,7 +284,7 @@ class Session:
         flat = [_np.ascontiguousarray(a.reshape(-1)) for a in arrays]
         if isinstance(results, str):
             results = [results]
-        names, units, out, ok, failed, failure = self._native.sweep(keys, flat, [str(r) for r in results or []],
+        names, units, out, ok, failed, failure = self._native.sweep(keys, flat, _names(results),
                                                                     not solve, bool(allow_large))
         if failed:
             _warnings.warn(f"{failed} of {ok.size} points: {failure}", RuntimeWarning, stacklevel=2)
@@ -281,7 +308,7 @@ class Session:
 def load(path, set: dict | None = None) -> Session:
     """Loads a sensor file, with overrides: {"optics.aperture": "20 cm"} (TOML text, as --set) or a number in SI."""
     texts, numbers = _split_sets(set)
-    session = Session(_radchain.load(str(path), texts))
+    session = Session(_radchain.load(_path(path), texts))
     for key, value in numbers:
         session.set(key, value)
     return session
@@ -291,7 +318,7 @@ def loads(text: str, set: dict | None = None, name: str = "<string>") -> Session
     """Loads a sensor file's text. `name` stands for the file in messages; relative data files are looked for beside
     it (if it is a path), then in RADCHAIN_DATA_PATH and the bundled spectra."""
     texts, numbers = _split_sets(set)
-    session = Session(_radchain.loads(str(text), str(name), texts))
+    session = Session(_radchain.loads(_name(text, "the sensor file's text"), _name(name, "name"), texts))
     for key, value in numbers:
         session.set(key, value)
     return session
@@ -339,7 +366,7 @@ def describe(name: str) -> Description:
     """A plugin's keys (units, defaults, accepted ranges), what it publishes and needs; a kind's plugins
     ("criterion"); a sensor file's own table ("sensor", "solve", "expected"); or the options of the imaging
     commands ("render": what radchain.render takes, "validate")."""
-    return Description(_radchain.describe(str(name)))
+    return Description(_radchain.describe(_name(name, "a plugin or table name")))
 
 
 def plugins():
@@ -397,7 +424,7 @@ def budget(path, results, set: dict | None = None, solve: bool = True):
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("budget(set=...) takes TOML value text, as --set does")
-    data = _json.loads(_radchain.budget(str(path), texts, list(results), not solve))
+    data = _json.loads(_radchain.budget(_path(path), texts, _names(results), not solve))
     return _pandas().DataFrame(data["rows"], columns=data["columns"])
 
 
@@ -412,7 +439,7 @@ def uncertainty(path, vary, results, samples: int = 1000, seed: int = 1, set: di
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("uncertainty(set=...) takes TOML value text, as --set does")
-    data = _json.loads(_radchain.uncertainty(str(path), texts, list(vary), list(results), int(samples), int(seed), not solve))
+    data = _json.loads(_radchain.uncertainty(_path(path), texts, list(vary), _names(results), int(samples), int(seed), not solve))
     return _pandas().DataFrame(data["rows"], columns=data["columns"])
 
 
@@ -426,7 +453,7 @@ def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True)
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("catalogue(set=...) takes TOML value text, as --set does")
-    table, errors, code = _radchain.catalogue([str(i) for i in inputs], texts, list(results or []), not solve)
+    table, errors, code = _radchain.catalogue([_path(i) for i in inputs], texts, _names(results), not solve)
     return _catalogue_frame(table, errors, code)
 
 
@@ -449,7 +476,7 @@ def grid(path, axes: dict, set: dict | None = None, results=None, solve: bool = 
     if numbers:
         raise TypeError("grid(set=...) takes TOML value text, as --set does")
     table, failure, code, method = _radchain.sweep_table(
-        str(path), texts, [(str(k), str(v)) for k, v in axes.items()], [str(r) for r in results or []], not solve,
+        _path(path), texts, [(_name(k, "an axis key"), _no_nul(str(v), "an axis")) for k, v in axes.items()], _names(results), not solve,
         "npy", "", "block", bool(allow_large))
     if failure:
         _warnings.warn(f"radchain sweep: {failure}", RuntimeWarning, stacklevel=2)
@@ -490,7 +517,7 @@ def render(path, set: dict | None = None, targets=None, scene: str | None = None
         if isinstance(value, (list, tuple)):
             value = ",".join(str(v) for v in value)
         given.append((key.replace("_", "-"), str(value)))
-    pixels, cards, summary, kind = _imaging.render(str(path), texts, given, target_texts, scene or "", int(seed),
+    pixels, cards, summary, kind = _imaging.render(_path(path), texts, given, target_texts, scene or "", int(seed),
                                                    int(star_seed))
     header = {key: value for key, value, _comment in cards if key not in ("COMMENT", "HISTORY", "")}
     return Image(pixels, header, cards, summary, kind)

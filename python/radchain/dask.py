@@ -22,7 +22,7 @@ import warnings as _warnings
 
 import numpy as _np
 
-from . import _catalogue_frame, _pandas, _radchain, _split_sets
+from . import _catalogue_frame, _name, _names, _no_nul, _pandas, _path, _radchain, _split_sets
 
 __all__ = ["sweep", "catalogue"]
 
@@ -79,8 +79,9 @@ def sweep(client, path, axes: dict, set: dict | None = None, results=None, solve
         raise ValueError("sweep: give at least one axis, e.g. {\"optics.aperture\": \"15 cm:30 cm:16\"}")
     if isinstance(results, str):
         results = [results]
-    args = (_os.path.abspath(str(path)), _texts_only(set, "sweep"), [(str(k), str(v)) for k, v in axes.items()],
-            [str(r) for r in results or []], not solve, bool(allow_large))
+    args = (_os.path.abspath(_path(path)), _texts_only(set, "sweep"),
+            [(_name(k, "an axis key"), _no_nul(str(v), "an axis")) for k, v in axes.items()], _names(results), not solve,
+            bool(allow_large))
     merged, code, failures = _run_sharded(client, _sweep_shard, args, shards, order, "npy")
     if failures:
         _warnings.warn(f"radchain sweep: {failures[0]}", RuntimeWarning, stacklevel=2)
@@ -97,6 +98,6 @@ def catalogue(client, inputs, set: dict | None = None, results=None, solve: bool
     shards: how many tasks (default: one per worker); order: "block" or "round-robin"."""
     if isinstance(inputs, str):
         inputs = [inputs]
-    args = ([_os.path.abspath(str(i)) for i in inputs], _texts_only(set, "catalogue"), list(results or []), not solve)
+    args = ([_os.path.abspath(_path(i)) for i in inputs], _texts_only(set, "catalogue"), _names(results), not solve)
     merged, code, _failures = _run_sharded(client, _catalogue_shard, args, shards, order, "json")
     return _catalogue_frame(merged.decode(), None, code)

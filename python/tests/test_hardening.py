@@ -99,3 +99,30 @@ def test_a_result_listed_twice_is_refused_not_written_as_an_unreadable_table(sbv
     # (two columns of one name make an .npy that numpy.load refuses)
     with pytest.raises(radchain.InputError, match="listed twice"):
         radchain.grid(sbv, {"optics.aperture": "15 cm:30 cm:3"}, results=["detector.snr", "detector.snr"])
+
+
+def test_names_are_strings_without_nul_not_coerced(sbv):
+    # A NUL cut the name on the C++ side (a KeyError named 'target.magnitude', a --set refused as another key); a
+    # number or bytes was str()-ed into a name nobody wrote.
+    s = radchain.load(sbv)
+    s.run()
+    with pytest.raises(ValueError, match="NUL"):
+        s["target.magnitude\0junk"]
+    with pytest.raises(ValueError, match="NUL"):
+        s.set("optics.aperture\0x", "15 cm")
+    with pytest.raises(ValueError, match="NUL"):
+        s.set("optics.aperture", "15 cm\0 junk")
+    with pytest.raises(TypeError, match="a parameter key is a str"):
+        s.set(3, "15 cm")
+    with pytest.raises(TypeError, match="a result name is a str"):
+        s[b"target.magnitude"]
+    with pytest.raises(ValueError, match="NUL"):
+        s.sweep({"optics.aperture": [0.1, 0.2]}, results=["target.magnitude\0zz"])
+    with pytest.raises(TypeError, match="a parameter key is a str"):
+        radchain.load(sbv, set={1.5: "15 cm"})
+    with pytest.raises(ValueError, match="NUL"):
+        radchain.load(sbv + "\0.bak")
+    with pytest.raises(ValueError, match="NUL"):
+        radchain.catalogue([sbv], results=["detector.snr\0"])
+    # The names as given still work.
+    assert s["target.magnitude"] == pytest.approx(15.5565, abs=1e-4)
