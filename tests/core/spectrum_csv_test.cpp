@@ -88,6 +88,9 @@ const Shipped shipped[] = {
     {"m4opt_ultrasat_nuv_gaussian.csv", "1"},
     {"m4opt_uvex_fuv_gaussian.csv", "1"},
     {"m4opt_uvex_nuv_gaussian.csv", "1"},
+    {"instrupy_blackbody_290K_radiance.csv", "W m-2 sr-1 m-1"},
+    {"instrupy_blackbody_291K_radiance.csv", "W m-2 sr-1 m-1"},
+    {"instrupy_unit_transmittance.csv", "1"},
 };
 
 TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
@@ -99,8 +102,9 @@ TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
     SCOPED_TRACE(s.file);
     const SpectrumFile f = load_spectrum_csv(spectra_dir + s.file, s.si_unit);
     EXPECT_EQ(f.spectrum.unit(), s.si_unit);
-    // (A measured table has many points; synphot's analytic 1 Å box has its two.)
-    EXPECT_GT(f.spectrum.size(), s.file == std::string("synphot_box_5500A_width1A.csv") ? 1 : 8);
+    // (A measured table has many points; synphot's 1 Å box and a constant transmittance have their two.)
+    const bool analytic = s.file == std::string("synphot_box_5500A_width1A.csv") || s.file == std::string("instrupy_unit_transmittance.csv");
+    EXPECT_GT(f.spectrum.size(), analytic ? 1 : 8);
     EXPECT_FALSE(f.provenance.empty());
     // Every shipped grid lies between 50 nm and 1 mm (i.e. it was converted from nm to metres).
     EXPECT_GT(f.spectrum.min_wavelength_m(), 50e-9);
