@@ -50,7 +50,7 @@ def evaluate(path):
     total = ref.band_integral(ref.SUN[0][0], ref.SUN[0][-1], ref.SUN)
     photons = ref.band_integral(*band, ref.SUN, weight=lambda l: l / (ref.H * ref.C))
     full_well, bits = si(detector["full_well"]), detector["adc_bits"]
-    floor = si(detector["dark_rate"]) * time_s + si(detector["read_noise"]) ** 2 + full_well / (2**bits * np.sqrt(12.0))
+    floor = si(detector["dark_current"]) * time_s + si(detector["read_noise"]) ** 2 + full_well / (2**bits * np.sqrt(12.0))
     t2 = float(s["criteria"]["detection"]["threshold"]) ** 2
     signal = 0.5 * (t2 + np.sqrt(t2 * t2 + 4 * t2 * floor))
     electrons_per_ratio = time_s * qe * transmittance * np.pi * aperture**2 / 4 * photons

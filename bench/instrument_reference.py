@@ -59,7 +59,7 @@ class Rubin:
         focal = quantity(optics["focal_length"], "m")
         pitch = quantity(detector["pixel_pitch"], "um", 1e-6)
         self.pixel_rad = pitch / focal
-        self.read = quantity(detector["dark_noise"], "e-")
+        self.read = quantity(detector["read_noise"], "e-")
         self.dark = quantity(detector["dark_current"], "e-/s")
         self.gain = quantity(detector["gain"], "DN/e-")
         self.seeing = quantity(atmosphere["seeing"], "arcsec", ARCSEC)

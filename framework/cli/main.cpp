@@ -111,6 +111,8 @@ int main(int argc, char** argv) {
   cli::add_output(cat_cmd, catalogue.output, "text (default), csv or json");
   cli::add_no_solve(cat_cmd, catalogue.no_solve);
   cat_cmd->add_flag("--tables", catalogue.tables, "also compute each file's [[table]] entries (e.g. limiting magnitude vs exposure), a row per cell");
+  cat_cmd->add_flag("--wide", catalogue.wide,
+                    "text: every column (instrument, delta) and whole notes; by default the table fits 160 columns");
   cat_cmd->add_option("--uncertainty", catalogue.uncertainty,
                       "N Monte Carlo samples of each file's [uncertainty]: 5 % and 95 % rows per solved or checked result")
       ->check(CLI::Range(std::size_t{2}, std::size_t{10000000}));

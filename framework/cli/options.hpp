@@ -43,6 +43,7 @@ struct CatalogueCommand {
   std::vector<std::string> sets;
   bool no_solve = false;
   bool tables = false;
+  bool wide = false;
   std::size_t uncertainty = 0;
   std::string solver = "auto";
   std::vector<std::string> results;

@@ -35,7 +35,7 @@ const Schema& schema() {
       quantity("integration_time", "s", "0.625 s").needed().above(0).scales(Scaling::power_law).described("frame integration time t"),
       quantity("full_well", "electron", "1e5 e-").needed().above(0).described("potential well depth n_well"),
       integer("adc_bits", "12").needed().at_least(1).at_most(32).described("ADC resolution N (bits)"),
-      quantity("dark_rate", "electron/s", "18 e-/s").fallback("0 e-/s").at_least(0)
+      quantity("dark_current", "electron/s", "18 e-/s").fallback("0 e-/s").at_least(0).formerly("dark_rate")
           .described("dark current per pixel at the operating temperature"),
       quantity("read_noise", "electron", "6 e-").fallback("0 e-").at_least(0).described("output amplifier noise σ_o (rms)"),
       choice("quantisation", {"emva", "paper"}).fallback("emva")
@@ -64,7 +64,7 @@ class CcdFrame final : public LaneStage<CcdFrame> {
 
   explicit CcdFrame(const Params& p)
       : params_(p), qe_(p.handle("qe")), time_(p.handle("integration_time")), well_(p.handle("full_well")),
-        bits_(p.handle("adc_bits")), dark_(p.handle("dark_rate")), read_(p.handle("read_noise")),
+        bits_(p.handle("adc_bits")), dark_(p.handle("dark_current")), read_(p.handle("read_noise")),
         pitch_(p.handle("pixel_pitch")), window_(p.handle("window_pixels")), ensquared_(p.handle("ensquared_energy")),
         sky_(p.handle("sky_brightness")), pitch_entry_(p.entry("pixel_pitch")),
         ensquared_entry_(p.entry("ensquared_energy")), sky_entry_(p.entry("sky_brightness")),

@@ -95,10 +95,10 @@ const Schema& schema() {
                      "from an orbiting platform: the line time GSD_along / ground speed, a pushbroom's one line per "
                      "ground line"),
       quantity("gain", "electron-1", "0.25 DN/e-").needed().above(0).described("system gain K in DN/e- (EMVA eq. 3)"),
-      quantity("dark_noise", "electron", "2.3 e-").needed().at_least(0)
-          .described("temporal dark noise σ_d0 (EMVA §4.2: at zero exposure time, read noise included)"),
-      quantity("saturation_capacity", "electron", "10500 e-").needed().above(0)
-          .described("saturation capacity μ_e.sat (EMVA §2.3)"),
+      quantity("read_noise", "electron", "2.3 e-").needed().at_least(0).formerly("dark_noise")
+          .described("read noise: EMVA's temporal dark noise σ_d0 (§4.2: at zero exposure time, read noise included)"),
+      quantity("full_well", "electron", "10500 e-").needed().above(0).formerly("saturation_capacity")
+          .described("full well: EMVA's saturation capacity μ_e.sat (§2.3)"),
       quantity("dark_current", "electron/s", "1 e-/s").fallback("0 e-/s").at_least(0)
           .described("dark current μ_I (EMVA §4.2)"),
       number("prnu", "0.005").fallback("0").at_least(0).below(1)
@@ -119,9 +119,9 @@ const Schema& schema() {
       choice("noise_equivalent_area", {"pixel_sampled", "continuous"}).fallback("pixel_sampled")
           .described("n_eff of a Gaussian PSF (seeing, gaussian_fwhm, jitter): 1/Σf² on the pixel grid, or the "
                      "continuous 4πσ² = 2.266 (FWHM/p)² of LSST SMTN-002 and the ETCs built on it"),
-      flag("quantisation").fallback("true")
-          .described("count the ADC's quantisation noise 1/(12 K²) e-² per pixel (EMVA 1288 eq. 5); false: leave "
-                     "it out, as tools that model an ideal ADC do"),
+      choice("quantisation", {"emva", "none"}).fallback("emva")
+          .described("quantisation noise: EMVA 1288's 1/(12 K²) e-² per pixel (eq. 5), or none, as tools that model an "
+                     "ideal ADC (m4opt, SMTN-002)"),
       choice("photometry", {"window", "circle", "psf"}).fallback("window")
           .described("window: n×n pixels with the PSF's ensquared energy; circle: a circular aperture of "
                      "aperture_radius with its encircled energy; psf: PSF-weighted, n_eff pixels"),
@@ -156,13 +156,13 @@ class Emva1288 final : public Stage {
 
   explicit Emva1288(const Params& p)
       : params_(p), qe_(p.handle("qe")), time_(p.handle("integration_time")), gain_(p.handle("gain")),
-        dark_noise_(p.handle("dark_noise")), saturation_(p.handle("saturation_capacity")),
+        dark_noise_(p.handle("read_noise")), saturation_(p.handle("full_well")),
         dark_current_(p.handle("dark_current")), prnu_(p.handle("prnu")), dsnu_(p.handle("dsnu")),
         other_(p.handle("other_noise")), bits_(p.handle("adc_bits")), binning_(p.handle("binning")),
         exposures_(p.handle("exposures")), tdi_(p.handle("tdi_stages")), pitch_(p.handle("pixel_pitch")),
         window_(p.handle("window_pixels")), ensquared_(p.handle("ensquared_energy")),
         psf_photometry_(p.text("photometry") == "psf"), circle_photometry_(p.text("photometry") == "circle"),
-        continuous_neff_(p.text("noise_equivalent_area") == "continuous"), quantisation_(p.flag("quantisation")),
+        continuous_neff_(p.text("noise_equivalent_area") == "continuous"), quantisation_(p.text("quantisation") == "emva"),
         aperture_radius_(p.handle("aperture_radius")), jitter_(p.handle("jitter")), rate_(p.handle("target_rate")),
         moving_(p.given("target_rate")), rate_tracking_(p.text("tracking") == "rate"),
         reference_radiance_(p.handle("reference_radiance")),

@@ -140,7 +140,15 @@ class Result(_Mapping):
         self.file = report.file
 
     def __getitem__(self, name):
-        return float(self.values_si[self._index[name]])
+        return float(self.values_si[self._position(name)])
+
+    def _position(self, name) -> int:
+        try:
+            return self._index[name]
+        except KeyError:
+            import difflib
+            near = difflib.get_close_matches(str(name), self.names, n=1, cutoff=0.6)
+            raise KeyError(f"{name}: no such result" + (f" (did you mean {near[0]!r}?)" if near else "")) from None
 
     def __iter__(self):
         return iter(self.names)
@@ -149,17 +157,17 @@ class Result(_Mapping):
         return len(self.names)
 
     def record(self, name) -> Value:
-        i = self._index[name]
+        i = self._position(name)
         return Value(name, float(self.values_si[i]), self.si_units[i], float(self.values[i]), self.units[i],
                      self.stages[i], self.equations[i])
 
     def display(self, name) -> str:
         """The value as the report prints it ("15.5565"), in r.record(name).unit."""
-        return self._report.display(self._index[name])
+        return self._report.display(self._position(name))
 
     def quantity(self, name):
         """The result as an astropy Quantity in its SI unit (astropy: Debian's python3-astropy)."""
-        i = self._index[name]
+        i = self._position(name)
         return float(self.values_si[i]) * _astropy_unit(self.si_units[i])
 
     def quantities(self) -> dict:
@@ -228,15 +236,20 @@ class Session:
         """The unknowns of the file's [[solve]] entries."""
         return list(self._native.solved)
 
-    def set(self, key: str, value) -> "Session":
+    def set(self, key: str, value, si: bool = False) -> "Session":
         """Sets <section>.<key>: TOML value text ("25 cm", "\\"e490\\"", "true") as `radchain run --set` takes it,
-        or a number in SI (checked against the parameter's range). Returns the session. InputError when refused
-        (nothing changes then)."""
+        or a number: as it is for a key without a unit (a magnitude, a reflectance), in SI with si=True for a key
+        with one (set("optics.aperture", 0.25, si=True) is 25 cm; a bare 15 is refused, not taken as 15 m). Checked
+        against the parameter's range. Returns the session. InputError when refused (nothing changes then)."""
         key = _name(key, "a parameter key")
         if key in self._native.solved:
             _warnings.warn(f"a [[solve]] overwrites {key} in run() and solve() (evaluate() uses the value set)",
                            stacklevel=2)
         if _is_number(value):
+            unit = self._native.si_unit(key)
+            if unit != "1" and not si:
+                raise TypeError(f"{key} has a unit ({unit}): give it as text, e.g. set({key!r}, \"{value:g} <unit>\"), "
+                                f"or as a number in {unit} with si=True")
             self._native.set_si(key, float(value))
         else:
             self._native.set_text(key, _text_of(value))
@@ -305,22 +318,23 @@ class Session:
         return f"<radchain.Session {self.sensor!r} ({self.path})>"
 
 
-def load(path, set: dict | None = None) -> Session:
-    """Loads a sensor file, with overrides: {"optics.aperture": "20 cm"} (TOML text, as --set) or a number in SI."""
+def load(path, set: dict | None = None, si: bool = False) -> Session:
+    """Loads a sensor file, with overrides: {"optics.aperture": "20 cm"} (TOML text, as --set) or numbers as
+    Session.set takes them (a key with a unit: in SI with si=True)."""
     texts, numbers = _split_sets(set)
     session = Session(_radchain.load(_path(path), texts))
     for key, value in numbers:
-        session.set(key, value)
+        session.set(key, value, si=si)
     return session
 
 
-def loads(text: str, set: dict | None = None, name: str = "<string>") -> Session:
+def loads(text: str, set: dict | None = None, name: str = "<string>", si: bool = False) -> Session:
     """Loads a sensor file's text. `name` stands for the file in messages; relative data files are looked for beside
     it (if it is a path), then in RADCHAIN_DATA_PATH and the bundled spectra."""
     texts, numbers = _split_sets(set)
     session = Session(_radchain.loads(_name(text, "the sensor file's text"), _name(name, "name"), texts))
     for key, value in numbers:
-        session.set(key, value)
+        session.set(key, value, si=si)
     return session
 
 

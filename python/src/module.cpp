@@ -173,6 +173,7 @@ class Session {
 
   // The current value (SI) of a numeric parameter.
   double get(const std::string& key) { return numeric_parameter(chain_, key, "get " + key).value(); }
+  std::string si_unit(const std::string& key) { return numeric_parameter_si_unit(chain_, key, "set " + key); }
 
   // Every result, solves and [expected] checks, from the parameters as set (solved unknowns from their set
   // values): `radchain run --set ...`.
@@ -197,6 +198,13 @@ class Session {
   }
   double value(const std::string& name) const { return chain_.result(name); }
   bool has_result(const std::string& name) const { return chain_.results().find(name).has_value(); }
+  // "no such result" with the nearest name, as the CLI says it.
+  std::string unknown_result(const std::string& name) const {
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < chain_.results().size(); ++i) names.push_back(chain_.results().info(i).name);
+    const std::string near = nearest_match(name, names);
+    return fmt::format("{}: no such result{}", name, near.empty() ? "" : " (did you mean \"" + near + "\"?)");
+  }
 
   // A fresh chain as the session builds it (compare's inputs).
   Chain fresh_chain() const { return build(overrides_, si_); }
@@ -963,6 +971,7 @@ PYBIND11_MODULE(_radchain, m) {
       })
       .def("set_si", [](Session& s, const std::string& key, double value) { locked(s, [&] { s.set_si(key, value); }); })
       .def("get", [](Session& s, const std::string& key) { return locked(s, [&] { return s.get(key); }); })
+      .def("si_unit", [](Session& s, const std::string& key) { return locked(s, [&] { return s.si_unit(key); }); })
       .def("run", [](Session& s) {
         const SessionCall call(s);
         py::gil_scoped_release release;
@@ -975,7 +984,7 @@ PYBIND11_MODULE(_radchain, m) {
       })
       .def("value", [](Session& s, const std::string& name) {
         return locked(s, [&] {
-          if (!s.has_result(name)) throw py::key_error(name);
+          if (!s.has_result(name)) throw py::key_error(s.unknown_result(name));
           return s.value(name);
         });
       })

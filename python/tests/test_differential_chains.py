@@ -313,7 +313,7 @@ def telescope_toml(c: ref.TelescopeCase) -> str:
         + f"focal_length = {_q(c.focal_length, 'm')}\n{psf}\n"
         f"[detector]\nplugin = \"emva1288\"\n{det}band_min = {_q(c.band_min, 'm')}\nband_max = {_q(c.band_max, 'm')}\n"
         f"integration_time = {_q(c.integration_time, 's')}\ngain = {_q(c.gain, 'DN/e-')}\n"
-        f"dark_noise = {_q(c.dark_noise, 'e-')}\nsaturation_capacity = {_q(c.saturation_capacity, 'e-')}\n"
+        f"read_noise = {_q(c.dark_noise, 'e-')}\nfull_well = {_q(c.saturation_capacity, 'e-')}\n"
         f"adc_bits = {c.adc_bits}\npixel_pitch = {_q(c.pixel_pitch, 'm')}\n\n"
         f"[criteria.detection]\nplugin = \"snr_threshold\"\nthreshold = {c.threshold!r}\n\n"
         f"[[solve]]\nunknown = \"target.magnitude\"\ncriterion = \"detection\"\nbracket = [{lo!r}, {hi!r}]\n")
@@ -439,7 +439,7 @@ def eo_toml(c: ref.EoCase) -> str:
         f"[detector]\nplugin = \"emva1288\"\npixel_pitch = {_q(c.pixel_pitch, 'm')}\n"
         f"band_min = {_q(c.band_min, 'm')}\nband_max = {_q(c.band_max, 'm')}\n{det}"
         f"integration_time = {_q(c.integration_time, 's')}\ngain = {_q(c.gain, 'DN/e-')}\n"
-        f"dark_noise = {_q(c.dark_noise, 'e-')}\nsaturation_capacity = {_q(c.saturation_capacity, 'e-')}\n"
+        f"read_noise = {_q(c.dark_noise, 'e-')}\nfull_well = {_q(c.saturation_capacity, 'e-')}\n"
         f"adc_bits = {c.adc_bits}\n\n"
         f"[criteria.gsd]\nplugin = \"gsd_requirement\"\ngsd = {_q(c.gsd_required, 'm')}\n"
         f"direction = \"geometric_mean\"\n{swath}")

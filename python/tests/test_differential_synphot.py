@@ -388,8 +388,8 @@ integration_time = "{time_s!r} s"
 exposures = {exposures}
 binning = {binning}
 gain = "1 DN/e-"
-dark_noise = "0 e-"
-saturation_capacity = "1e30 e-"
+read_noise = "0 e-"
+full_well = "1e30 e-"
 adc_bits = 32
 pixel_pitch = "{pitch_um!r} um"
 """

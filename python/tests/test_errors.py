@@ -59,10 +59,10 @@ def test_bad_set_text_is_the_cli_set_message_and_changes_nothing(cli, sbv):
 def test_bad_set_number(sbv):
     s = radchain.load(sbv)
     with pytest.raises(radchain.InputError) as caught:
-        s.set("optics.aperture", -0.1)
+        s.set("optics.aperture", -0.1, si=True)
     assert "out of range" in caught.value.problem and caught.value.file == "set optics.aperture"
     with pytest.raises(radchain.InputError) as caught:
-        s.set("optics.apertur", 0.2)
+        s.set("optics.apertur", 0.2, si=True)
     assert 'did you mean "aperture"' in caught.value.problem
     with pytest.raises(radchain.InputError) as caught:
         s.set("detector.adc_bits", 12.5)
@@ -70,6 +70,14 @@ def test_bad_set_number(sbv):
     with pytest.raises(radchain.InputError):
         s.set("detector.quantisation", 1.0)  # a choice, not a number
     assert s.get("optics.aperture") == 0.15
+    # A bare number for a key with a unit is not taken as SI by default (15 meant as cm would be 15 m).
+    with pytest.raises(TypeError, match=r"optics.aperture has a unit \(m\).*si=True"):
+        s.set("optics.aperture", 15)
+    with pytest.raises(TypeError, match="si=True"):
+        radchain.load(sbv, set={"optics.aperture": 0.2})
+    assert radchain.load(sbv, set={"optics.aperture": 0.2}, si=True).get("optics.aperture") == 0.2
+    s.set("target.magnitude", 14)  # no unit: a number as it is
+    assert s.get("target.magnitude") == 14
 
 
 def test_missing_file(cli, tmp_path):

@@ -126,3 +126,14 @@ def test_names_are_strings_without_nul_not_coerced(sbv):
         radchain.catalogue([sbv], results=["detector.snr\0"])
     # The names as given still work.
     assert s["target.magnitude"] == pytest.approx(15.5565, abs=1e-4)
+
+
+def test_a_mistyped_result_name_suggests_the_nearest(sbv):
+    s = radchain.load(sbv)
+    r = s.run()
+    with pytest.raises(KeyError, match=r"target.magnitud: no such result \(did you mean 'target.magnitude'\?\)"):
+        r["target.magnitud"]
+    with pytest.raises(KeyError, match="did you mean"):
+        r.record("detector.snrr")
+    with pytest.raises(KeyError, match=r'detector.snrr: no such result \(did you mean "detector.snr"\?\)'):
+        s["detector.snrr"]

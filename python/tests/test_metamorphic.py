@@ -215,7 +215,7 @@ def quiet_evaluate(session):
 def quiet_set(session, key, value):
     with warnings.catch_warnings():  # "a [[solve]] overwrites ...": the forward evaluation uses the value set
         warnings.simplefilter("ignore")
-        session.set(key, value)
+        session.set(key, value, si=True)
 
 
 def loads(text: str, sensor: str):
@@ -574,13 +574,13 @@ def _signal_limited_doc(rng):
         sensor = f"rubin-lsst-{'ugrizy'[rng.integers(6)]}-m5.toml"
         doc = read_doc(sensor)
         doc["atmosphere"].pop("sky_brightness", None)  # no sky
-        doc["detector"].update({"dark_noise": "0 e-", "dark_current": "0 e-/s", "gain": "1e9 DN/e-", "adc_bits": 32,
+        doc["detector"].update({"read_noise": "0 e-", "dark_current": "0 e-/s", "gain": "1e9 DN/e-", "adc_bits": 32,
                                 "integration_time": f"{time} s"})
         doc["optics"]["aperture"] = f"{float(np.round(10 ** rng.uniform(-1, 1), 5))} m"
     else:
         sensor = "msx-sbv.toml"
         doc = read_doc(sensor)
-        doc["detector"].update({"read_noise": "0 e-", "dark_rate": "0 e-/s", "full_well": "1 e-", "adc_bits": 32,
+        doc["detector"].update({"read_noise": "0 e-", "dark_current": "0 e-/s", "full_well": "1 e-", "adc_bits": 32,
                                 "quantisation": "emva", "integration_time": f"{time} s"})
         doc["optics"]["aperture"] = f"{float(np.round(10 ** rng.uniform(0.5, 2), 4))} cm"
     doc["criteria"]["detection"]["threshold"] = threshold
@@ -597,7 +597,7 @@ def _sky_limited_doc(rng):
     sensor = "msx-sbv.toml"
     doc = read_doc(sensor)
     time = float(np.round(10 ** rng.uniform(1.0, 3.0), 4))
-    doc["detector"].update({"read_noise": "0 e-", "dark_rate": "0 e-/s", "full_well": "1 e-", "adc_bits": 32,
+    doc["detector"].update({"read_noise": "0 e-", "dark_current": "0 e-/s", "full_well": "1 e-", "adc_bits": 32,
                             "quantisation": "emva", "integration_time": f"{time} s", "pixel_pitch": "1 cm",
                             "sky_brightness": -10})
     doc["optics"]["focal_length"] = f"{float(np.round(10 ** rng.uniform(-2.0, -1.5), 5))} m"
@@ -668,7 +668,7 @@ def _binned_point_doc(rng, prnu: bool):
     det = doc["detector"]
     det["photometry"] = "window"
     det.update({
-        "dark_noise": f"{float(np.round(rng.uniform(0, 10), 3))} e-",
+        "read_noise": f"{float(np.round(rng.uniform(0, 10), 3))} e-",
         "dark_current": f"{float(np.round(rng.uniform(0, 2), 3))} e-/s",
         "dsnu": f"{float(np.round(rng.uniform(0, 3), 3))} e-",
         "prnu": float(np.round(rng.uniform(0.001, 0.02), 4)) if prnu else 0,
@@ -747,7 +747,7 @@ def test_binning_an_extended_scene_sums_native_pixels():
         if doc["detector"].get("plugin") != "emva1288":
             pytest.fail(f"{sensor}: expected an emva1288 detector")
         doc["detector"].update({
-            "dark_noise": f"{float(np.round(rng.uniform(0, 50), 3))} e-",
+            "read_noise": f"{float(np.round(rng.uniform(0, 50), 3))} e-",
             "dark_current": f"{float(np.round(rng.uniform(0, 500), 3))} e-/s",
             "dsnu": f"{float(np.round(rng.uniform(0, 5), 3))} e-",
             "prnu": float(np.round(rng.uniform(0, 0.02), 4)),

@@ -30,7 +30,7 @@ class PyPointCamera(radchain.Stage):
                            example="1 s", doc="exposure t"),
         radchain.parameter("gain", type="quantity", unit="electron-1", required=True, min=0, min_exclusive=True,
                            example="0.5 DN/e-", doc="system gain K"),
-        radchain.parameter("dark_noise", type="quantity", unit="electron", required=True, min=0, example="3 e-",
+        radchain.parameter("read_noise", type="quantity", unit="electron", required=True, min=0, example="3 e-",
                            doc="temporal dark noise σ_d0"),
         radchain.parameter("dark_current", type="quantity", unit="electron/s", default="0 e-/s", min=0,
                            doc="dark current μ_I"),
@@ -55,7 +55,7 @@ class PyPointCamera(radchain.Stage):
     def evaluate(self, params, inputs):
         t = params["integration_time"]
         s = t * params["qe"] * inputs["light.signal.scale"] * self.photons_per_scale
-        noise = np.sqrt(s + params["dark_noise"] ** 2 + 1 / (12 * params["gain"] ** 2) + params["dark_current"] * t)
+        noise = np.sqrt(s + params["read_noise"] ** 2 + 1 / (12 * params["gain"] ** 2) + params["dark_current"] * t)
         return {"detector.image_electrons": s, "detector.signal_electrons": s, "detector.noise_electrons": noise,
                 "detector.snr": s / noise, "detector.integration_time": t}
 
@@ -84,7 +84,7 @@ band_max = "0.9 um"
 qe = 0.6
 integration_time = "1 s"
 gain = "0.5 DN/e-"
-dark_noise = "3 e-"
+read_noise = "3 e-"
 dark_current = "2 e-/s"
 {extra}
 [criteria.detection]
@@ -95,7 +95,7 @@ unknown = "target.magnitude"
 criterion = "detection"
 bracket = [5, 25]
 """
-CPP_ONLY = 'saturation_capacity = "20000 e-"\nadc_bits = 16\npixel_pitch = "5 um"'  # emva1288's required keys
+CPP_ONLY = 'full_well = "20000 e-"\nadc_bits = 16\npixel_pitch = "5 um"'  # emva1288's required keys
 SHARED = ["detector.image_electrons", "detector.signal_electrons", "detector.noise_electrons", "detector.snr"]
 
 
@@ -123,12 +123,12 @@ def test_solved_limiting_magnitude_agrees(twins):
 
 def test_spectral_parameter_reruns_prepare(twins):
     for s in twins:
-        s.set("detector.band_max", 0.7e-6)
+        s.set("detector.band_max", 0.7e-6, si=True)
     cpp, py = (s.evaluate() for s in twins)
     assert py["detector.image_electrons"] == pytest.approx(cpp["detector.image_electrons"], rel=1e-12)
     narrow, = {cpp["detector.image_electrons"]}
     for s in twins:
-        s.set("detector.band_max", 0.9e-6)
+        s.set("detector.band_max", 0.9e-6, si=True)
     assert twins[1].evaluate()["detector.image_electrons"] > narrow  # the wider band counts more: prepare re-ran
 
 

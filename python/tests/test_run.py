@@ -64,8 +64,8 @@ def test_set_text_then_run_equals_cli(cli, sbv):
 
 def test_set_number_in_si_equals_cli_in_metres(cli, sbv):
     s = radchain.load(sbv)
-    s.set("optics.aperture", 0.25)
-    s.set("detector.integration_time", 1.5)
+    s.set("optics.aperture", 0.25, si=True)
+    s.set("detector.integration_time", 1.5, si=True)
     assert s.get("optics.aperture") == 0.25
     ref = cli.json("run", sbv, "--set", "optics.aperture=0.25 m", "--set", "detector.integration_time=1.5 s",
                    "--format", "json")
@@ -103,7 +103,7 @@ def test_repeated_runs_do_not_drift(sbv):
     s = radchain.load(sbv)
     first = s.run().json()
     s.evaluate()
-    s.set("optics.aperture", 0.3)
+    s.set("optics.aperture", 0.3, si=True)
     s.run()
     s.set("optics.aperture", "15 cm")
     assert s.run().json() == first

@@ -46,7 +46,7 @@ def test_sweep_point_equals_run_at_that_value(cli, sbv):
     assert radchain.load(sbv).sweep({"optics.aperture": [0.2]}, results="detector.snr")["detector.snr"].shape == (1,)
     for i, d in enumerate(apertures):
         s = radchain.load(sbv)
-        s.set("optics.aperture", float(d))
+        s.set("optics.aperture", float(d), si=True)
         r = s.run()
         # lanes solve by Dekker's method, run() by TOMS 748: both within 2^-47 of the root (docs/architecture.md)
         assert close(out["target.magnitude"][i], r["target.magnitude"], 1e-12), d
@@ -69,7 +69,7 @@ def test_forward_sweep_equals_evaluate(sbv):
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # setting a solved unknown warns; evaluate() uses it
                 s = radchain.load(sbv, set={"target.magnitude": float(magnitudes[i]),
-                                            "detector.integration_time": float(times[j])})
+                                            "detector.integration_time": float(times[j])}, si=True)
             r = s.evaluate()
             assert close(out["detector.snr"][i, j], r["detector.snr"], 1e-13)
             assert close(out["criteria.detection.margin"][i, j], r["criteria.detection.margin"], 1e-12)
@@ -82,7 +82,7 @@ def test_spectral_parameter_sweeps_point_by_point(sbv):
     band_max = np.array([0.7e-6, 0.8e-6, 0.9e-6])
     out = radchain.load(sbv).sweep({"detector.band_max": band_max}, results=["target.magnitude"])
     for i, b in enumerate(band_max):
-        r = radchain.load(sbv, set={"detector.band_max": float(b)}).run()
+        r = radchain.load(sbv, set={"detector.band_max": float(b)}, si=True).run()
         assert out["target.magnitude"][i] == r["target.magnitude"]  # the same scalar solver: bit for bit
 
 
@@ -163,7 +163,7 @@ def test_several_solves_sweep_point_by_point(source_dir):
     altitudes = np.array([300e3, 400e3, 600e3])
     out = s.sweep({"platform.altitude": altitudes}, results=s.solved)
     for i, h in enumerate(altitudes):
-        r = radchain.load(f, set={"platform.altitude": float(h)}).run()
+        r = radchain.load(f, set={"platform.altitude": float(h)}, si=True).run()
         for unknown in s.solved:
             assert out[unknown][i] == r[unknown], (unknown, h)
     # f' scales with the altitude at a fixed GSD

@@ -78,7 +78,7 @@ TEST(Budget, SbvLimitingMagnitudeAgainstClosedForms) {
       {"optics.aperture", 5 / std::numbers::ln10},
       {"optics.transmittance", 2.5 / std::numbers::ln10},
       {"detector.read_noise", -T * T * sigma * sigma / (A * c * S * S)},
-      {"detector.dark_rate", -T * T * Nd / (2 * A * c * S * S)},
+      {"detector.dark_current", -T * T * Nd / (2 * A * c * S * S)},
       {"detector.full_well", -T * T * q * q / (2 * A * c * S * S)},
       {"detector.integration_time", (A * S - T * T * Nd / (2 * S)) / (A * c * S)},
       {"criteria.detection.threshold", -1 / (A * c)},

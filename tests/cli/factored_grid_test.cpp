@@ -108,14 +108,14 @@ TEST(FactoredGrid, ALongPowerLawAxisTakesItsSignalFromTheLaw) {
 
 // The floor depends on the dark rate and the read noise but not on the aperture: J = {dark, read}, a 7 × 6 sub-grid.
 TEST(FactoredGrid, TheNoiseFloorsAxesAreFoundFromTheChain) {
-  const Sweep sweep(grid_of(sbv_file, {{"detector.dark_rate", "1 e-/s:100 e-/s:7"},
+  const Sweep sweep(grid_of(sbv_file, {{"detector.dark_current", "1 e-/s:100 e-/s:7"},
                                        {"optics.aperture", "10 cm:40 cm:40"},
                                        {"detector.read_noise", "2 e-:20 e-:6"}}));
   SweepWorker worker(sweep);
   std::string why_not;
   const auto grid = FactoredGrid::plan(sweep, worker, why_not);
   ASSERT_TRUE(grid) << why_not;
-  EXPECT_NE(grid->description().find("the noise floor varies with detector.dark_rate, detector.read_noise;"), std::string::npos)
+  EXPECT_NE(grid->description().find("the noise floor varies with detector.dark_current, detector.read_noise;"), std::string::npos)
       << grid->description();
   EXPECT_EQ(expect_every_point_matches(sweep, *grid, worker), 0u);
 }
@@ -231,7 +231,7 @@ TEST(FactoredGrid, RandomGridsAroundTheBundledSensorsAgreeWithThePerPointSolve) 
     // Candidate axes: the numeric parameters of the optics and the detector that a grid would sweep.
     std::vector<std::pair<std::string, double>> candidates;
     for (const char* key : {"optics.aperture", "optics.transmittance", "detector.qe", "detector.integration_time",
-                            "detector.dark_rate", "detector.read_noise"}) {
+                            "detector.dark_current", "detector.read_noise"}) {
       try {
         const ParameterRef p = chain.parameter(key);
         if (p.value() > 0) candidates.emplace_back(key, p.value());

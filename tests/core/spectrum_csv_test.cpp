@@ -106,8 +106,9 @@ TEST(SpectrumCsv, EveryShippedFileLoadsInItsUnit) {
     const bool analytic = s.file == std::string("synphot_box_5500A_width1A.csv") || s.file == std::string("instrupy_unit_transmittance.csv");
     EXPECT_GT(f.spectrum.size(), analytic ? 1 : 8);
     EXPECT_FALSE(f.provenance.empty());
-    // Every shipped grid lies between 50 nm and 1 mm (i.e. it was converted from nm to metres).
-    EXPECT_GT(f.spectrum.min_wavelength_m(), 50e-9);
+    // Every shipped grid lies between 10 nm (a constant's first node, where the flat SEDs start) and 1 mm (i.e. it
+    // was converted from nm to metres).
+    EXPECT_GE(f.spectrum.min_wavelength_m(), 10e-9);
     EXPECT_LT(f.spectrum.max_wavelength_m(), 1.0001e-3);
     EXPECT_GE(f.spectrum.value().minCoeff(), 0.0);
   }

@@ -25,7 +25,7 @@ const std::string spectra = std::string(RADCHAIN_SOURCE_DIR) + "/spectra/";
 // The detector's lines: `detector`, then each default whose key `detector` does not set.
 std::string with_defaults(const std::string& detector) {
   const char* defaults[] = {"band_min = \"0.63 um\"", "band_max = \"0.69 um\"", "qe = 0.5", "gain = \"0.1 DN/e-\"",
-                            "dark_noise = \"20 e-\"", "saturation_capacity = \"80000 e-\"", "adc_bits = 14",
+                            "read_noise = \"20 e-\"", "full_well = \"80000 e-\"", "adc_bits = 14",
                             "pixel_pitch = \"10 um\"", "integration_time = \"2 ms\""};
   std::string text = detector + "\n";
   for (const std::string line : defaults) {
@@ -185,7 +185,7 @@ TEST(Emva1288Extended, SaturationRadianceFillsTheWellOrTheAdc) {
 
 TEST(Emva1288Extended, TdiStagesScaleTheShotLimitedSnrAsRootN) {
   // Shot-noise limited (no read noise, K = 100 DN/e-: σ_q/K ≈ 0.003 e-): SNR ∝ √N_tdi.
-  const std::string quiet = "dark_noise = \"0 e-\"\ngain = \"100 DN/e-\"\nadc_bits = 32\nreference_radiance = \"100 W m-2 sr-1 um-1\"\n";
+  const std::string quiet = "read_noise = \"0 e-\"\ngain = \"100 DN/e-\"\nadc_bits = 32\nreference_radiance = \"100 W m-2 sr-1 um-1\"\n";
   const Report one = run(write_sensor("tdi1", quiet));
   const Report many = run(write_sensor("tdi64", quiet + "tdi_stages = 64\n"));
   EXPECT_NEAR(v(many, "detector.reference_signal_electrons"), 64.0 * v(one, "detector.reference_signal_electrons"), 1e-6);
@@ -260,8 +260,8 @@ plugin = "emva1288"
 band_min = "0.63 um"
 band_max = "0.69 um"
 gain = "0.1 DN/e-"
-dark_noise = "20 e-"
-saturation_capacity = "80000 e-"
+read_noise = "20 e-"
+full_well = "80000 e-"
 adc_bits = 14
 pixel_pitch = "10 um"
 integration_time = "2 ms"

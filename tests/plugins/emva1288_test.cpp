@@ -4,6 +4,7 @@
 #include "radchain/chain.hpp"
 #include "radchain/constants.hpp"
 #include "radchain/error.hpp"
+#include "radchain/sensor_file.hpp"
 #include "radchain/physics/emva1288.hpp"
 #include "radchain/physics/magnitudes.hpp"
 #include "radchain/physics/psf.hpp"
@@ -56,7 +57,7 @@ band_min = "0.4 um"
 band_max = "0.9 um"
 qe = 0.6
 gain = "0.5 DN/e-"
-saturation_capacity = "20000 e-"
+full_well = "20000 e-"
 adc_bits = 16
 pixel_pitch = "5 um"
 )" + (detector.find("integration_time") == std::string::npos ? "integration_time = \"1 s\"\n" : "") + detector + R"(
@@ -80,7 +81,7 @@ Report run(const std::string& file) {
 }
 
 TEST(Emva1288Chain, BrightStarSaturatesAndTheCriterionSaysSo) {
-  const Report bright = run(write_sensor("bright", "magnitude = 4", "dark_noise = \"3 e-\""));
+  const Report bright = run(write_sensor("bright", "magnitude = 4", "read_noise = \"3 e-\""));
   auto v = [&](const Report& r, const std::string& n) { return r.value(n).value(); };
   // The brightest pixel: f_peak × image (Gaussian FWHM 10 µm on 5 µm pixels: FWHM 2 px, erf(1/(2√2σ))² = 0.19691).
   EXPECT_NEAR(v(bright, "detector.peak_pixel_fraction"), radchain::physics::gaussian_peak_pixel_fraction(2.0), 1e-12);
@@ -93,7 +94,7 @@ TEST(Emva1288Chain, BrightStarSaturatesAndTheCriterionSaysSo) {
   EXPECT_EQ(v(bright, "criteria.unsaturated.saturated"), 1.0);
   EXPECT_NEAR(v(bright, "criteria.unsaturated.margin"), 1.0 / v(bright, "detector.peak_pixel_fill") - 1.0, 1e-12);
   // Fainter by 10 mag: 10^4 less light, unsaturated.
-  const Report faint = run(write_sensor("faint", "magnitude = 14", "dark_noise = \"3 e-\""));
+  const Report faint = run(write_sensor("faint", "magnitude = 14", "read_noise = \"3 e-\""));
   EXPECT_NEAR(v(bright, "detector.image_electrons") / v(faint, "detector.image_electrons"), 1e4, 1e-6);
   EXPECT_GT(v(faint, "criteria.unsaturated.margin"), 0.0);
   EXPECT_EQ(v(faint, "criteria.unsaturated.saturated"), 0.0);
@@ -102,7 +103,7 @@ TEST(Emva1288Chain, BrightStarSaturatesAndTheCriterionSaysSo) {
 // Window photometry, one frame: n² = S + n_pix (σ_d0² + 1/(12K²) + μ_I t) + n_pix σ_DSNU² + s_g² S²/n_eff.
 TEST(Emva1288Chain, NoiseBudgetByHand) {
   const Report r = run(write_sensor("budget", "magnitude = 12",
-                                    "dark_noise = \"3 e-\"\ndark_current = \"2 e-/s\"\ndsnu = \"1.5 e-\"\nprnu = 0.01\n"
+                                    "read_noise = \"3 e-\"\ndark_current = \"2 e-/s\"\ndsnu = \"1.5 e-\"\nprnu = 0.01\n"
                                     "window_pixels = 3"));
   auto v = [&](const std::string& n) { return r.value(n).value(); };
   const double s = v("detector.signal_electrons"), neff = v("detector.noise_equivalent_area");
@@ -117,7 +118,7 @@ TEST(Emva1288Chain, NoiseBudgetByHand) {
 
 // TDI (as Earth-observation line cameras use it): N stages multiply signal and dark, read noise counts once.
 TEST(Emva1288Chain, TdiStagesMultiplySignalAndDarkNotReadNoise) {
-  const std::string det = "dark_noise = \"20 e-\"\ndark_current = \"100 e-/s\"\nintegration_time = \"1 ms\"\n";
+  const std::string det = "read_noise = \"20 e-\"\ndark_current = \"100 e-/s\"\nintegration_time = \"1 ms\"\n";
   const Report one = run(write_sensor("tdi1", "magnitude = 14", det));
   const Report many = run(write_sensor("tdi64", "magnitude = 14", det + "tdi_stages = 64"));
   auto v = [](const Report& r, const std::string& n) { return r.value(n).value(); };
@@ -132,7 +133,7 @@ TEST(Emva1288Chain, TdiStagesMultiplySignalAndDarkNotReadNoise) {
 
 // M co-added frames: temporal variances add (× M), fixed patterns (DSNU, PRNU) add in amplitude (× M²).
 TEST(Emva1288Chain, CoaddedExposuresAndBinning) {
-  const std::string det = "dark_noise = \"5 e-\"\ndsnu = \"2 e-\"\n";
+  const std::string det = "read_noise = \"5 e-\"\ndsnu = \"2 e-\"\n";
   const Report one = run(write_sensor("m1", "magnitude = 15", det));
   const Report four = run(write_sensor("m4", "magnitude = 15", det + "exposures = 4"));
   auto v = [](const Report& r, const std::string& n) { return r.value(n).value(); };
@@ -158,8 +159,8 @@ TEST(Emva1288Chain, SedIndependentOfTheNormalisingBand) {
   const double v_minus_g = band_magnitude(band_photon_rate(sun, v_band), band_photon_rate(vega, v_band)) -
                            band_magnitude(band_photon_rate(sun, g_band), band_photon_rate(vega, g_band));
   const double g = 10.0 - v_minus_g;
-  const Report in_v = run(write_sensor("sed_v", "magnitude = 10", "dark_noise = \"3 e-\""));
-  std::string file = write_sensor("sed_g", "magnitude = " + std::to_string(g), "dark_noise = \"3 e-\"");
+  const Report in_v = run(write_sensor("sed_v", "magnitude = 10", "read_noise = \"3 e-\""));
+  std::string file = write_sensor("sed_g", "magnitude = " + std::to_string(g), "read_noise = \"3 e-\"");
   {  // the band line: G instead of V
     std::ifstream in(file);
     std::stringstream text;
@@ -223,7 +224,7 @@ TEST(Emva1288Chain, ContinuousNoiseEquivalentAreaAndNoQuantisationNoise) {
   EXPECT_EQ(v(a, "detector.signal_electrons"), v(b, "detector.signal_electrons"));
   EXPECT_NEAR(floor(a) / floor(b), 1.0, 1e-12);
 
-  Chain no_q = load_sensor(file, {Override{"detector.quantisation", "false"}});
+  Chain no_q = load_sensor(file, {Override{"detector.quantisation", "\"none\""}});
   no_q.drop_solves();
   const Report c = no_q.run();
   EXPECT_EQ(v(c, "detector.quantisation_noise"), 0.0);
@@ -251,12 +252,38 @@ TEST(Emva1288Chain, RubinM5WithSmtnConventionsToItsPrintedPrecision) {
   }
 }
 
+// One vocabulary across detectors: emva1288's dark_noise and saturation_capacity are read_noise and full_well, as in
+// ccd_frame (whose dark_rate is dark_current, as in emva1288). A file with a former name gives the same numbers and a
+// located warning per key; a file with both names is refused.
+TEST(Emva1288Chain, FormerKeyNamesAreAcceptedWithALocatedWarning) {
+  const std::string file = sensors + "rubin-lsst-r-m5.toml";
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto replaced = [&](std::string t, const std::string& from, const std::string& to) {
+    const auto at = t.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? t : t.replace(at, from.size(), to);
+  };
+  const std::string old = replaced(replaced(text, "\nread_noise = ", "\ndark_noise = "), "\nfull_well = ", "\nsaturation_capacity = ");
+  const Report now = load_sensor(file).run();
+  const Report before = load_sensor_text(old, file).run();
+  EXPECT_EQ(before.value("target.magnitude").value(), now.value("target.magnitude").value());
+  std::size_t renamed = 0;
+  for (const auto& w : before.warnings) {
+    if (w.find("dark_noise: renamed read_noise") != std::string::npos) ++renamed;
+    if (w.find("saturation_capacity: renamed full_well") != std::string::npos) ++renamed;
+  }
+  EXPECT_EQ(renamed, 2u);
+  for (const auto& w : now.warnings) EXPECT_EQ(w.find("renamed"), std::string::npos) << w;
+  EXPECT_THROW(load_sensor_text(replaced(text, "\nread_noise = ", "\ndark_noise = \"3 e-\"\nread_noise = "), file), InputError);
+}
+
 // Circular aperture photometry: a circle of R = 10 µrad on the sky is 10 µm on the 1 m focal
 // plane, 2 pixels of 5 µm: the Gaussian's encircled energy 1 − exp(−R²/2σ²) (σ = FWHM/2√(2 ln 2)) of the image
 // is the signal, π R² = 4π pixels carry the read noise, and n_eff still sets the PRNU term.
 TEST(Emva1288Chain, CircularApertureEncircledEnergyAndAreaByHand) {
   const Report r = run(write_sensor("circle", "magnitude = 12",
-                                    "dark_noise = \"3 e-\"\nphotometry = \"circle\"\naperture_radius = \"10 urad\"\n"));
+                                    "read_noise = \"3 e-\"\nphotometry = \"circle\"\naperture_radius = \"10 urad\"\n"));
   auto v = [&](const std::string& n) { return r.value(n).value(); };
   const double sigma = 10e-6 / (2 * std::sqrt(2 * std::numbers::ln2)), radius = 10e-6;
   const double encircled = 1 - std::exp(-radius * radius / (2 * sigma * sigma));
@@ -273,7 +300,7 @@ TEST(Emva1288Chain, CircularApertureEncircledEnergyAndAreaByHand) {
 // the sky: 83.8 % of the light (Born & Wolf, Principles of Optics 7th ed. §8.5.2, 1 − J0²(3.8317) − J1²(3.8317)).
 TEST(Emva1288Chain, CircularApertureOfTheFirstDarkRingHoldsBornAndWolfs838Percent) {
   std::string file = write_sensor("airy_circle", "magnitude = 12",
-                                  "dark_noise = \"3 e-\"\nphotometry = \"circle\"\naperture_radius = \"" +
+                                  "read_noise = \"3 e-\"\nphotometry = \"circle\"\naperture_radius = \"" +
                                       std::to_string(3.831706 / std::numbers::pi * 550e-9 / 0.2 * 1e6) + " urad\"\n");
   std::string text;
   {
@@ -293,7 +320,7 @@ TEST(Emva1288Chain, CircularApertureOfTheFirstDarkRingHoldsBornAndWolfs838Percen
 // Jitter σ_j = 5 µrad on f' = 1 m blurs by a Gaussian of FWHM 2√(2 ln 2) · 5 µm, added in quadrature to the optics'
 // 10 µm; jitter = 0 leaves every number as without the key.
 TEST(Emva1288Chain, JitterAddsInQuadratureToThePsf) {
-  const std::string det = "dark_noise = \"3 e-\"\nphotometry = \"psf\"\n";
+  const std::string det = "read_noise = \"3 e-\"\nphotometry = \"psf\"\n";
   const Report still = run(write_sensor("nojitter", "magnitude = 12", det));
   const Report zero = run(write_sensor("zerojitter", "magnitude = 12", det + "jitter = \"0 urad\"\n"));
   const Report shaky = run(write_sensor("jitter", "magnitude = 12", det + "jitter = \"5 urad\"\n"));
@@ -309,7 +336,7 @@ TEST(Emva1288Chain, JitterAddsInQuadratureToThePsf) {
 // The rules of the new keys, each refused at its key.
 TEST(Emva1288Chain, CircleAndJitterRules) {
   auto refused = [](const std::string& detector, const std::string& key) {
-    const std::string file = write_sensor("rule", "magnitude = 12", "dark_noise = \"3 e-\"\n" + detector);
+    const std::string file = write_sensor("rule", "magnitude = 12", "read_noise = \"3 e-\"\n" + detector);
     try {
       load_sensor(file);
       ADD_FAILURE() << "accepted: " << detector;
@@ -357,7 +384,7 @@ TEST(Emva1288Chain, ThroughputComponentsEqualTheHardwareCurve) {
 // Sidereal tracking: n_eff of the streaked PSF (FWHM 2 px) enters the noise; rate tracking and a zero rate give
 // the static chain's numbers exactly; the trailing loss is 1.25 lg(n_eff ratio).
 TEST(Emva1288Chain, StreakNoiseEquivalentAreaAndTrailingLoss) {
-  const std::string det = "dark_noise = \"3 e-\"\nphotometry = \"psf\"\n";
+  const std::string det = "read_noise = \"3 e-\"\nphotometry = \"psf\"\n";
   const Report still = run(write_sensor("still", "magnitude = 12", det));
   const Report streak = run(write_sensor("streak", "magnitude = 12", det + "target_rate = \"20 urad/s\"\n"));
   const Report tracked = run(write_sensor("tracked", "magnitude = 12", det + "target_rate = \"20 urad/s\"\ntracking = \"rate\"\n"));
@@ -394,7 +421,7 @@ TEST(Emva1288Chain, StreakNoiseEquivalentAreaAndTrailingLoss) {
 // streak gives the still n_eff and a zero loss, and a 4-pixel streak a positive loss equal to the Gaussian model's.
 TEST(Emva1288Chain, AiryStreakStartsFromTheExactStillNoiseEquivalentArea) {
   auto airy = [](const std::string& name, const std::string& det) {
-    std::string file = write_sensor(name, "magnitude = 12", "dark_noise = \"3 e-\"\nphotometry = \"psf\"\n" + det);
+    std::string file = write_sensor(name, "magnitude = 12", "read_noise = \"3 e-\"\nphotometry = \"psf\"\n" + det);
     std::ifstream in(file);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string gaussian = "psf = \"gaussian\"\ngaussian_fwhm = \"10 um\"";

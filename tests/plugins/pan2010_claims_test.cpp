@@ -151,9 +151,9 @@ TEST_F(Pan2010Claims, IntegrationTimeAndTransmittanceAreAlikeOnlyWithoutDarkCurr
   EXPECT_NEAR(tau2, 2.5 * std::log10(2.0), 1e-9);
   EXPECT_NEAR(time2, 0.6818, 1e-4);
   // With the dark charge held at 11.25 e- (rate scaled by 1/t) the two are the same lever.
-  chain_->set("detector.dark_rate", 9.0);
+  chain_->set("detector.dark_current", 9.0);
   const double same = limit("detector.integration_time", 1.25) - m0;
-  chain_->set("detector.dark_rate", 18.0);
+  chain_->set("detector.dark_current", 18.0);
   EXPECT_NEAR(same, 2.5 * std::log10(2.0), 1e-9);
 }
 

@@ -21,7 +21,7 @@ explained in CONVENTIONS.md:
     focalLength and apertureDia -> the telescope (obscuration 0, transmittance = opticsSysEff), quantumEff -> qe
     (flat over the box band operatingWavelength +- bandwidth/2);
   * noise sqrt(Ne + numOfReadOutE^2): `emva1288` dark_noise = numOfReadOutE, no dark current, no PRNU/DSNU,
-    quantisation = false (instrupy has no ADC noise), a 1e12 e- well and a 32-bit ADC (never reached).
+    quantisation = "none" (instrupy has no ADC noise), a 1e12 e- well and a 32-bit ADC (never reached).
 """
 import json
 import math
@@ -200,11 +200,11 @@ def sensor(ref, c, temperature_override=None):
          if own_line_time else
          f'integration_time = {q(m["integration_time_s"], "s")}   # instrupy calculate_integration_time'
          + (" (capped at maxDetectorExposureTime)" if m["integration_time_capped"] else f" ({i['scanTechnique']}, access time)")),
-        f'dark_noise = "{i["numOfReadOutE"]:g} e-"                # instrupy numOfReadOutE',
+        f'read_noise = "{i["numOfReadOutE"]:g} e-"                # instrupy numOfReadOutE',
         'dark_current = "0 e-/s"',
         'gain = "1 DN/e-"',
-        "quantisation = false                 # instrupy has no ADC noise",
-        'saturation_capacity = "1e12 e-"      # never reached (instrupy has no well)',
+        'quantisation = "none"                # instrupy has no ADC noise',
+        'full_well = "1e12 e-"      # never reached (instrupy has no well)',
         "adc_bits = 32",
         "",
         "[expected]",

@@ -21,7 +21,7 @@ namespace radchain {
 namespace fs = std::filesystem;
 namespace {
 
-enum Column { sensor, result, kind, computed, reference, tolerance, unit, delta, delta_pct, check, note, column_count };
+enum Column { sensor, instrument, result, kind, computed, reference, tolerance, unit, delta, delta_pct, check, note, column_count };
 
 // A value to the last bit (the shortest text that reads back as the same double); text tables show 6 digits
 // (catalogue_layout's text_digits).
@@ -29,9 +29,10 @@ std::string full_precision(double v) { return std::isnan(v) ? "nan" : fmt::forma
 
 std::string unit_cell(const std::string& unit) { return unit == "1" ? std::string() : unit; }
 
-std::vector<std::string> empty_row(const std::string& stem) {
+std::vector<std::string> empty_row(const std::string& stem, const std::string& name) {
   std::vector<std::string> row(column_count);
   row[sensor] = stem;
+  row[instrument] = name;
   return row;
 }
 
@@ -94,15 +95,19 @@ std::vector<std::string> catalogue_files(const std::vector<std::string>& inputs)
 
 TableLayout catalogue_layout() {
   return TableLayout{"catalogue",
-                     {"sensor", "result", "kind", "computed", "reference", "tolerance", "unit", "delta", "delta_pct",
-                      "check", "note"},
-                     {false, false, false, true, true, true, false, true, true, false, false},
-                     {0, 0, 0, 6, 6, 3, 0, 0, 0, 0, 0}};
+                     {"sensor", "instrument", "result", "kind", "computed", "reference", "tolerance", "unit", "delta",
+                      "delta_pct", "check", "note"},
+                     {false, false, false, false, true, true, true, false, true, true, false, false},
+                     {0, 0, 0, 0, 6, 6, 3, 0, 0, 0, 0, 0},
+                     // The text table fits 160 columns: the file stands for the instrument, the percentage for the
+                     // delta, and the note is cut (--wide, CSV and JSON have all of them).
+                     {false, true, false, false, false, false, false, false, true, false, false, false},
+                     160};
 }
 
 std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, const Report& report,
                                                      const std::vector<std::string>& extra_results) {
-  const std::string stem = fs::path(file).stem().string();
+  const std::string stem = fs::path(file).stem().string(), &name = report.sensor_name;
   std::map<std::string, std::size_t> index;
   for (std::size_t i = 0; i < report.results.size(); ++i) index.emplace(report.results[i].name, i);
   std::vector<std::vector<std::string>> rows;
@@ -110,7 +115,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
   // [expected] checks: computed and reference in the unit the reference was written in.
   std::vector<std::string> checked;
   for (const auto& e : report.expectations) {
-    auto row = empty_row(stem);
+    auto row = empty_row(stem, name);
     row[result] = e.spec.result;
     checked.push_back(e.spec.result);
     const auto it = index.find(e.spec.result);
@@ -135,8 +140,8 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
     row[check] = e.passed ? "ok" : "FAIL";
     row[note] = e.spec.source;
     if (e.spec.follows_si)
-      row[note] = fmt::format("follows = {}: the value checked{}{}", e.spec.follows_as_written,
-                              e.spec.source.empty() ? "" : "; ", e.spec.source);
+      row[note] = fmt::format("erratum: the source's own inputs give {} (checked), not the printed value{}{}",
+                              e.spec.follows_as_written, e.spec.source.empty() ? "" : "; ", e.spec.source);
     if (!e.found) {
       row[note] = "not computed by this sensor";
     } else {
@@ -152,7 +157,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
   for (const auto& s : report.solves) {
     const bool covered = std::find(checked.begin(), checked.end(), s.spec.unknown) != checked.end();
     if (covered && s.converged) continue;
-    auto row = empty_row(stem);
+    auto row = empty_row(stem, name);
     row[result] = s.spec.unknown;
     row[kind] = "solve";
     if (const auto it = index.find(s.spec.unknown); it != index.end() && s.converged) {
@@ -170,7 +175,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
   // marks the criterion informational; and the run's warnings, one row each.
   for (const auto& c : report.criteria) {
     if (c.passed) continue;
-    auto row = empty_row(stem);
+    auto row = empty_row(stem, name);
     row[result] = c.section == "detector" ? "detector.peak_pixel_fill" : c.section + ".margin";
     row[kind] = "criterion";
     if (!std::isnan(c.margin)) row[computed] = full_precision(c.margin);
@@ -179,14 +184,14 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
     rows.push_back(std::move(row));
   }
   for (const auto& w : report.warnings) {
-    auto row = empty_row(stem);
+    auto row = empty_row(stem, name);
     row[check] = "warning";
     row[note] = w;
     rows.push_back(std::move(row));
   }
 
   for (const auto& name : extra_results) {
-    auto row = empty_row(stem);
+    auto row = empty_row(stem, name);
     row[result] = name;
     if (const auto it = index.find(name); it != index.end()) {
       const ResultInfo& info = report.results[it->second];
@@ -203,7 +208,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
   for (const auto& t : report.tables)
     for (std::size_t r = 0; r < t.rows.size(); ++r)
       for (std::size_t c = 0; c < t.columns.size(); ++c) {
-        auto row = empty_row(stem);
+        auto row = empty_row(stem, name);
         row[result] = fmt::format("{} @ {} = {}", t.columns[c].name, t.spec.vary, t.spec.values_written[r]);
         if (!std::isnan(t.rows[r][c])) row[computed] = full_precision(t.rows[r][c] * t.columns[c].display_factor);
         row[unit] = unit_cell(t.columns[c].display_unit);
@@ -211,7 +216,7 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
         rows.push_back(std::move(row));
       }
   if (rows.empty()) {
-    auto row = empty_row(stem);
+    auto row = empty_row(stem, name);
     row[note] = "no [expected] references and no [[solve]] (add --results to show results)";
     rows.push_back(std::move(row));
   }
@@ -237,13 +242,13 @@ static std::vector<std::vector<std::string>> uncertainty_rows(const std::string&
   std::vector<std::vector<std::string>> rows;
   if (u.results.empty()) return rows;
   const Uncertainty mc = run_uncertainty(u);
-  const std::string stem = fs::path(file).stem().string();
+  const std::string stem = fs::path(file).stem().string(), &name = report.sensor_name;
   std::vector<std::string> varied;
   for (const auto& v : mc.inputs) varied.push_back(v.key);
   for (const auto& s : mc.results) {
     const ResultInfo& info = chain.results().info(*chain.results().find(s.name));
     for (const auto& [label, value] : {std::pair{"5 %", s.p5}, std::pair{"95 %", s.p95}}) {
-      auto row = empty_row(stem);
+      auto row = empty_row(stem, name);
       row[result] = fmt::format("{} @ {}", s.name, label);
       if (!std::isnan(value)) row[computed] = full_precision(value * info.display_factor);
       row[unit] = unit_cell(info.display_unit);
@@ -255,7 +260,7 @@ static std::vector<std::vector<std::string>> uncertainty_rows(const std::string&
 }
 
 std::vector<std::string> catalogue_error_row(const std::string& file, const std::string& message) {
-  auto row = empty_row(fs::path(file).stem().string());
+  auto row = empty_row(fs::path(file).stem().string(), "");
   row[check] = "ERROR";
   row[note] = message;
   return row;

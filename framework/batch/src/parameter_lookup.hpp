@@ -36,11 +36,16 @@ inline ParameterLookup look_up_parameter(const Chain& chain, const std::string& 
     return found;
   }
   std::vector<std::string> numeric_keys;
+  std::string renamed;
   for (const auto& e : slot->params->entries()) {
     if (is_numeric(e.spec->type)) numeric_keys.push_back(e.spec->key);
     if (e.spec->key == name) found.entry = &e;
+    for (const auto& former : e.spec->former_keys)
+      if (former == name) renamed = e.spec->key;
   }
-  if (!found.entry) {
+  if (!found.entry && !renamed.empty()) {
+    found.problem = fmt::format("{}: \"{}\" is renamed \"{}\" (one name in every plugin)", slot->params->context(), name, renamed);
+  } else if (!found.entry) {
     const std::string near = nearest_match(name, numeric_keys);
     found.problem = fmt::format("{} has no numeric parameter \"{}\"{}; its numeric parameters: {}", slot->params->context(),
                                 name, near.empty() ? "" : " (did you mean \"" + near + "\"?)",

@@ -40,6 +40,12 @@ ParameterRef numeric_parameter(Chain& chain, const std::string& key, const std::
   return chain.parameter(key);
 }
 
+std::string numeric_parameter_si_unit(Chain& chain, const std::string& key, const std::string& where) {
+  numeric_parameter(chain, key, where);
+  const ParamSpec& spec = spec_of(chain, key);
+  return spec.type == ParamType::quantity ? spec.si_unit : "1";
+}
+
 void check_parameter_value(Chain& chain, const std::string& key, double value_si, const std::string& where,
                            const std::string& subject) {
   const ParamSpec& spec = spec_of(chain, key);

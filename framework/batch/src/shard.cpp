@@ -235,7 +235,12 @@ int merge_shards(const std::vector<std::string>& files, std::ostream& out, std::
   layout.kind = first.fields.at("kind");
   layout.columns = first.columns;
   for (char t : first.fields.at("types")) layout.numeric.push_back(t == 'n');
-  if (layout.kind == "catalogue") layout.text_digits = catalogue_layout().text_digits;  // as the unsharded table shows
+  if (layout.kind == "catalogue") {  // as the unsharded table shows
+    const TableLayout catalogue = catalogue_layout();
+    layout.text_digits = catalogue.text_digits;
+    layout.text_hidden = catalogue.text_hidden;
+    layout.text_width = catalogue.text_width;
+  }
   const TableFormat job_format = parse_table_format(first.fields.at("format"));
   if (!binary_ok && format.value_or(job_format) == TableFormat::npy)
     throw InputError(SourceLocation{"merge", 0, 0}, "", "", "the shards are of an .npy job: give --out FILE.npy (or --format csv)");

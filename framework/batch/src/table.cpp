@@ -63,6 +63,12 @@ std::unique_ptr<TableSummary> summary_for(const std::string& kind) {
   return nullptr;
 }
 
+TableLayout wide_text(TableLayout layout) {
+  layout.text_hidden.clear();
+  layout.text_width = 0;
+  return layout;
+}
+
 std::string number_cell(double value) {
   if (std::isnan(value)) return "nan";
   return fmt::format("{:.10g}", value);
@@ -252,6 +258,7 @@ void TableWriter::finish(int exit_code) {
     w.out << "  \"exit_code\": " << exit_code << "\n}\n";
   } else if (w.format == TableFormat::text) {
     const std::size_t n = w.layout.columns.size();
+    auto shown = [&](std::size_t i) { return !(i < w.layout.text_hidden.size() && w.layout.text_hidden[i]); };
     std::vector<std::size_t> width(n);
     for (std::size_t i = 0; i < n; ++i) width[i] = display_width(w.layout.columns[i]);
     for (auto& row : w.buffered)
@@ -265,10 +272,27 @@ void TableWriter::finish(int exit_code) {
         if (row[i].empty()) row[i] = "-";
         width[i] = std::max(width[i], display_width(row[i]));
       }
+    // A width limit cuts the last column (a note, a source) to what the others leave, at least 10 columns of it.
+    std::size_t last = n;
+    for (std::size_t i = 0; i < n; ++i)
+      if (shown(i)) last = i;
+    if (w.layout.text_width > 0 && last < n) {
+      std::size_t others = 0;
+      for (std::size_t i = 0; i < last; ++i)
+        if (shown(i)) others += width[i] + 2;
+      const std::size_t room = std::max<std::size_t>(10, w.layout.text_width > others ? w.layout.text_width - others : 0);
+      if (width[last] > room) {
+        for (auto& row : w.buffered) row[last] = truncated(row[last], room);
+        width[last] = room;
+      }
+    }
     auto line = [&](const std::vector<std::string>& cells) {
       std::string text;
+      bool first = true;
       for (std::size_t i = 0; i < n; ++i) {
-        if (i) text += "  ";
+        if (!shown(i)) continue;
+        if (!first) text += "  ";
+        first = false;
         text += padded(cells[i], width[i], w.layout.numeric[i]);
       }
       while (!text.empty() && text.back() == ' ') text.pop_back();

@@ -105,6 +105,19 @@ inline std::size_t display_width(const std::string& text) {
   return width;
 }
 
+// The first `width` columns of UTF-8 text, the last of them "…" when the text is longer.
+inline std::string truncated(const std::string& text, std::size_t width) {
+  if (display_width(text) <= width) return text;
+  std::string out;
+  std::size_t columns = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if ((c & 0xC0) != 0x80 && ++columns > width - 1) break;
+    out += text[i];
+  }
+  return out + "…";
+}
+
 inline std::string padded(const std::string& text, std::size_t width, bool right) {
   const std::size_t w = display_width(text);
   if (w >= width) return text;

@@ -26,7 +26,7 @@ int catalogue(const CatalogueCommand& command) {
   Progress progress("catalogue");
   options.progress = progress.counter();
   Sink sink(command.output.out);
-  TableWriter writer(sink.stream(), format, catalogue_layout(), files.size(), options.shard,
+  TableWriter writer(sink.stream(), format, command.wide ? wide_text(catalogue_layout()) : catalogue_layout(), files.size(), options.shard,
                      catalogue_job(files, options));
   progress.start(shard_points(options.shard, files.size()).count);
   std::vector<std::string> errors;

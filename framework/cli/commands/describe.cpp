@@ -68,6 +68,7 @@ void print_keys(const Schema& schema) {
     fmt::print("  {:<{}}  {:<24} {:<22} {}\n", p.key, width, kind, status, p.doc);
     const std::string range = p.range_text();
     if (!range.empty()) fmt::print("  {:<{}}  {:<24} accepted: {}\n", "", width, "", range);
+    if (!p.former_keys.empty()) fmt::print("  {:<{}}  {:<24} formerly: {}\n", "", width, "", join(p.former_keys));
   }
 }
 

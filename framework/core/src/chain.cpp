@@ -330,6 +330,7 @@ Report Chain::run() {
   for (const TableSpec& table : tables) report.tables.push_back(tabulate(table));
   report.criteria = criterion_outcomes(report.solves);
   for (const StageSlot& slot : stages) {
+    if (slot.params) report.warnings.insert(report.warnings.end(), slot.params->renamed().begin(), slot.params->renamed().end());
     report.warnings.insert(report.warnings.end(), slot.spectral_warnings.begin(), slot.spectral_warnings.end());
     report.warnings.insert(report.warnings.end(), slot.scalar_warnings.begin(), slot.scalar_warnings.end());
   }

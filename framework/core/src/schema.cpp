@@ -316,8 +316,18 @@ Params validate_section(const Schema& schema, const ConfigValue& table, const Va
     if (key == "plugin" && !context.plugin.empty()) continue;  // a stage's plugin key was read by the host
     bool known = false;
     for (auto& entry : params.entries()) {
-      if (entry.spec->key != key) continue;
+      const ParamSpec& spec = *entry.spec;
+      const bool former = spec.key != key && std::find(spec.former_keys.begin(), spec.former_keys.end(), key) != spec.former_keys.end();
+      if (spec.key != key && !former) continue;
       known = true;
+      if (former) {
+        if (table.find(spec.key))
+          throw InputError(value.where, params.context(), key,
+                           fmt::format("the former name of {}, which is given too: keep {}", spec.key, spec.key));
+        params.note_renamed(InputError(value.where, params.context(), key,
+                                       fmt::format("renamed {} (one name in every plugin); the old name is accepted "
+                                                   "for now", spec.key)).what());
+      }
       assign_param(params, entry, value, context);
       entry.given = true;
     }

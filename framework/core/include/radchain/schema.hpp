@@ -50,6 +50,8 @@ struct ParamSpec {
   bool spectral = false;  // changing it re-runs the chain's spectral phase
   bool finite_only = false;  // ±inf refused (NaN always is)
   Scaling scaling = Scaling::none;
+  // Names the key had before one vocabulary was agreed across plugins: accepted, with a located warning.
+  std::vector<std::string> former_keys;
 
   // Fluent setters, so a schema reads like a table.
   ParamSpec&& fallback(std::string value) && { default_value = std::move(value); return std::move(*this); }
@@ -65,6 +67,7 @@ struct ParamSpec {
   // Refuses ±infinity (and NaN): a tolerance of inf would let a check pass anything.
   ParamSpec&& finite() && { finite_only = true; return std::move(*this); }
   ParamSpec&& scales(Scaling how) && { scaling = how; return std::move(*this); }
+  ParamSpec&& formerly(std::string key) && { former_keys.push_back(std::move(key)); return std::move(*this); }
 
   std::string range_text() const;     // "> 0 m", "in [0, 1]", "one of e490, wehrli"
   std::string expected_text() const;  // what the error line says is expected
@@ -126,8 +129,13 @@ class Params {
   std::vector<Entry>& entries() { return entries_; }
   const std::vector<Entry>& entries() const { return entries_; }
 
+  // Keys written under a former name (accepted): a located warning line each, which the run reports.
+  const std::vector<std::string>& renamed() const { return renamed_; }
+  void note_renamed(std::string line) { renamed_.push_back(std::move(line)); }
+
  private:
   std::string section_, plugin_;
+  std::vector<std::string> renamed_;
   const Schema* schema_;
   std::vector<Entry> entries_;  // one per schema entry, never resized after construction
   // entries_[i].spec->key as its size and first and last 8 bytes, side by side: a look-up by key (a stage's prepare

@@ -23,6 +23,8 @@ namespace radchain {
 // The numeric parameter "<section>.<key>" of `chain`, or InputError located at `where` (e.g. "set optics.aperture")
 // naming the sections, or the section's numeric keys and the nearest one.
 ParameterRef numeric_parameter(Chain& chain, const std::string& key, const std::string& where);
+// The SI unit of a numeric parameter ("m", "s"; "1" for a number without one); the key as numeric_parameter takes it.
+std::string numeric_parameter_si_unit(Chain& chain, const std::string& key, const std::string& where);
 // InputError unless `value_si` is accepted by the parameter `key` of `chain` (its range; a whole number for an
 // integer parameter). `subject` names the value in the message ("optics.aperture[17] = 0.001").
 void check_parameter_value(Chain& chain, const std::string& key, double value_si, const std::string& where,

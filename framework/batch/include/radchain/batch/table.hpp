@@ -27,7 +27,13 @@ struct TableLayout {
   // Per column (or empty: none): significant digits a cell is shown with in text, where the cell itself holds the
   // number to the last bit for CSV, JSON and shards (0: as the cell is).
   std::vector<int> text_digits = {};
+  // The text table a person reads (--wide: everything, as CSV and JSON have it): columns left out of it, and its
+  // width, to which the last column is cut with "…" (0: no limit).
+  std::vector<bool> text_hidden = {};
+  std::size_t text_width = 0;
 };
+// The layout with every column in the text table and no width limit (--wide).
+TableLayout wide_text(TableLayout layout);
 
 // Footer of a table (text: a last line; JSON: "summary"), computed from the rows, so that a merged table gets
 // the same footer as the unsharded one.
