@@ -168,7 +168,7 @@ class Emva1288 final : public Stage {
         reference_radiance_(p.handle("reference_radiance")),
         reference_reflectance_(p.handle("reference_reflectance")) {
     if (!(p.get("band_max") > p.get("band_min"))) p.reject("band_max", "must be larger than band_min");
-    if (continuous_neff_ && moving_)
+    if (continuous_neff_ && moving_ && !rate_tracking_)
       p.reject("noise_equivalent_area", "\"continuous\" is the still Gaussian's n_eff; a streak's is taken on the pixel grid");
     if (psf_photometry_ && p.given("window_pixels"))
       p.reject("window_pixels", "is used only with photometry = \"window\" (PSF-weighted photometry uses n_eff pixels)");

@@ -6,12 +6,14 @@
     r["target.magnitude"]                    # a result in SI
     r.frame()                                # pandas DataFrame: name, value_si, si_unit, value, unit, stage, equation
     s.set("optics.aperture", "25 cm")        # TOML value text, as `radchain run --set` takes it
-    s.set("optics.aperture", 0.25)           # or a number in SI
+    s.set("optics.aperture", 0.25, si=True)  # or a number: in SI, said so, for a key with a unit
     s.solve(); s.evaluate()                  # the solves only; forward only (`--no-solve`)
     out = s.sweep({"optics.aperture": np.linspace(0.15, 0.30, 1_000_000)}, results=["target.magnitude"])
 
 Bad input raises radchain.InputError (a ValueError) with the command line's one-line located message and the
-fields file, line, column, context, subject, problem. Values are in SI everywhere except the display columns.
+fields file, line, column, context, subject, problem; a name or value of the wrong Python type (a bare number for a
+key with a unit without si=True, a name that is not a str) raises TypeError. Values are in SI everywhere except the
+display columns.
 """
 from __future__ import annotations
 
@@ -95,11 +97,14 @@ def _name(value, what: str = "a name") -> str:
 def _names(values, what: str = "a result name") -> list:
     if isinstance(values, str):
         values = [values]
-    return [_name(v, what) for v in values or []]
+    return [_name(v, what) for v in ([] if values is None else values)]
 
 
 def _path(value, what: str = "a path") -> str:
-    return _no_nul(_os.fspath(value), what)
+    value = _os.fspath(value)
+    if not isinstance(value, str):
+        raise TypeError(f"{what} is a str or os.PathLike of str, not {type(value).__name__} {value!r}")
+    return _no_nul(value, what)
 
 
 def _split_sets(set):
@@ -332,7 +337,7 @@ def loads(text: str, set: dict | None = None, name: str = "<string>", si: bool =
     """Loads a sensor file's text. `name` stands for the file in messages; relative data files are looked for beside
     it (if it is a path), then in RADCHAIN_DATA_PATH and the bundled spectra."""
     texts, numbers = _split_sets(set)
-    session = Session(_radchain.loads(_name(text, "the sensor file's text"), _name(name, "name"), texts))
+    session = Session(_radchain.loads(_name(text, "the sensor file's text"), _path(name, "name"), texts))
     for key, value in numbers:
         session.set(key, value, si=si)
     return session
@@ -458,8 +463,8 @@ def uncertainty(path, vary, results, samples: int = 1000, seed: int = 1, set: di
 
 
 def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True):
-    """Sensor files and folders (their *.toml) on all cores, as `radchain catalogue`: DataFrame of sensor, result,
-    kind (published / peer / paper / internal / unstated for an [expected] check; solve; criterion), computed,
+    """Sensor files and folders (their *.toml) on all cores, as `radchain catalogue`: DataFrame of sensor, instrument
+    (the file's [sensor] name), result, kind (published / peer / paper / internal / unstated for an [expected] check; solve; criterion), computed,
     reference, tolerance (the deviation the check allows, in the row's unit), unit, delta, delta_pct, check, note. df.attrs["exit_code"] is the command's (0 all held,
     1 a check failed, 2 a file was bad input), df.attrs["errors"] the bad files' one-line messages."""
     if isinstance(inputs, str):

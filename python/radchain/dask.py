@@ -94,7 +94,7 @@ def sweep(client, path, axes: dict, set: dict | None = None, results=None, solve
 def catalogue(client, inputs, set: dict | None = None, results=None, solve: bool = True, shards: int | None = None,
               order: str = "block"):
     """radchain.catalogue(inputs, …) over the cluster, one task per shard of the sensor files: the same DataFrame
-    (sensor, result, kind, computed, reference, tolerance, unit, delta, delta_pct, check, note; attrs exit_code, errors, summary).
+    (sensor, instrument, result, kind, computed, reference, tolerance, unit, delta, delta_pct, check, note; attrs exit_code, errors, summary).
     shards: how many tasks (default: one per worker); order: "block" or "round-robin"."""
     if isinstance(inputs, str):
         inputs = [inputs]

@@ -276,6 +276,10 @@ TEST(Emva1288Chain, FormerKeyNamesAreAcceptedWithALocatedWarning) {
   EXPECT_EQ(renamed, 2u);
   for (const auto& w : now.warnings) EXPECT_EQ(w.find("renamed"), std::string::npos) << w;
   EXPECT_THROW(load_sensor_text(replaced(text, "\nread_noise = ", "\ndark_noise = \"3 e-\"\nread_noise = "), file), InputError);
+  // A --set of either name overrides the file's other one (a new name over an old file, and back).
+  auto read_noise = [](Chain chain) { return chain.parameter("detector.read_noise").value(); };
+  EXPECT_EQ(read_noise(load_sensor_text(old, file, {Override{"detector.read_noise", "\"4 e-\""}})), 4.0);
+  EXPECT_EQ(read_noise(load_sensor(file, {Override{"detector.dark_noise", "\"5 e-\""}})), 5.0);
 }
 
 // Circular aperture photometry: a circle of R = 10 µrad on the sky is 10 µm on the 1 m focal

@@ -77,8 +77,13 @@ std::vector<std::string> catalogue_files(const std::vector<std::string>& inputs)
     if (fs::is_directory(input, ec)) {
       // Sub-folders too: validation/ keeps each peer's cases in a folder of its own.
       std::vector<std::string> found;
-      for (const auto& e : fs::recursive_directory_iterator(input, ec))
-        if (e.is_regular_file() && e.path().extension() == ".toml") found.push_back(e.path().string());
+      fs::recursive_directory_iterator it(input, ec), end;
+      for (; !ec && it != end; it.increment(ec))
+        if (it->is_regular_file() && it->path().extension() == ".toml") found.push_back(it->path().string());
+      // A sub-folder that cannot be listed is the user's to fix, not an internal error.
+      if (ec)
+        throw InputError(SourceLocation{it != end ? it->path().string() : input, 0, 0}, "catalogue", "",
+                         "cannot list the folder: " + ec.message());
       if (found.empty())
         throw InputError(SourceLocation{input, 0, 0}, "catalogue", "", "the folder holds no sensor files (*.toml)");
       std::sort(found.begin(), found.end());
@@ -190,10 +195,10 @@ std::vector<std::vector<std::string>> catalogue_rows(const std::string& file, co
     rows.push_back(std::move(row));
   }
 
-  for (const auto& name : extra_results) {
+  for (const auto& extra : extra_results) {
     auto row = empty_row(stem, name);
-    row[result] = name;
-    if (const auto it = index.find(name); it != index.end()) {
+    row[result] = extra;
+    if (const auto it = index.find(extra); it != index.end()) {
       const ResultInfo& info = report.results[it->second];
       row[computed] = full_precision(report.values[it->second] * info.display_factor);
       row[unit] = unit_cell(info.display_unit);

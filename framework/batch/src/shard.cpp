@@ -235,8 +235,7 @@ int merge_shards(const std::vector<std::string>& files, std::ostream& out, std::
   layout.kind = first.fields.at("kind");
   layout.columns = first.columns;
   for (char t : first.fields.at("types")) layout.numeric.push_back(t == 'n');
-  if (layout.kind == "catalogue") {  // as the unsharded table shows
-    const TableLayout catalogue = catalogue_layout();
+  if (const TableLayout catalogue = catalogue_layout(); layout.columns == catalogue.columns) {  // as the unsharded table shows
     layout.text_digits = catalogue.text_digits;
     layout.text_hidden = catalogue.text_hidden;
     layout.text_width = catalogue.text_width;

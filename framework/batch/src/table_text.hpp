@@ -108,6 +108,7 @@ inline std::size_t display_width(const std::string& text) {
 // The first `width` columns of UTF-8 text, the last of them "…" when the text is longer.
 inline std::string truncated(const std::string& text, std::size_t width) {
   if (display_width(text) <= width) return text;
+  if (width == 0) return {};
   std::string out;
   std::size_t columns = 0;
   for (std::size_t i = 0; i < text.size(); ++i) {

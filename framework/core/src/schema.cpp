@@ -320,14 +320,23 @@ Params validate_section(const Schema& schema, const ConfigValue& table, const Va
       const bool former = spec.key != key && std::find(spec.former_keys.begin(), spec.former_keys.end(), key) != spec.former_keys.end();
       if (spec.key != key && !former) continue;
       known = true;
-      if (former) {
-        if (table.find(spec.key))
+      // The same parameter under its new and its former name: a --set of one overrides the file's other; both in
+      // the file (or both set) is refused.
+      const ConfigValue* other = nullptr;
+      for (const auto& name : former ? std::vector<std::string>{spec.key} : spec.former_keys)
+        if (const ConfigValue* v = table.find(name)) other = v;
+      if (other) {
+        auto is_set = [](const ConfigValue& v) { return v.where.file.rfind("--set ", 0) == 0; };
+        if (is_set(*other) && !is_set(value)) continue;  // the --set one is assigned when its turn comes
+        if (is_set(value) == is_set(*other))
           throw InputError(value.where, params.context(), key,
-                           fmt::format("the former name of {}, which is given too: keep {}", spec.key, spec.key));
+                           former ? fmt::format("the former name of {}, which is given too: keep {}", spec.key, spec.key)
+                                  : fmt::format("given under its former name too: keep {}", spec.key));
+      }
+      if (former)
         params.note_renamed(InputError(value.where, params.context(), key,
                                        fmt::format("renamed {} (one name in every plugin); the old name is accepted "
                                                    "for now", spec.key)).what());
-      }
       assign_param(params, entry, value, context);
       entry.given = true;
     }

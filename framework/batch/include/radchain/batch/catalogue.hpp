@@ -31,7 +31,7 @@ struct CatalogueOptions {
   std::atomic<std::size_t>* progress = nullptr;  // counts finished files
 };
 
-// Columns: sensor, result, kind, computed, reference, tolerance, unit, delta, delta_pct, check, note.
+// Columns: sensor, instrument, result, kind, computed, reference, tolerance, unit, delta, delta_pct, check, note.
 TableLayout catalogue_layout();
 
 // The rows of one evaluated sensor file (the sensor column is the file's stem).
