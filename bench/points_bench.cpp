@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   const int repeat = std::atoi(argv[3]);
   try {
     PointsJob job;
-    job.make_chain = [sensor] { return load_sensor(sensor); };
+    job.make_chain = [sensor](Solving solving) { return load_sensor(sensor, {}, solving); };
     job.parameters = {"optics.aperture"};
     job.results = {mode == "solve" ? "target.magnitude" : "detector.snr"};
     job.no_solve = mode != "solve";

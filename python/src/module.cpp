@@ -8,6 +8,7 @@
 #include "radchain/batch/uncertainty.hpp"
 #include "radchain/batch/compare.hpp"
 #include "radchain/batch/points.hpp"
+#include "radchain/batch/session.hpp"
 #include "radchain/batch/shard.hpp"
 #include "radchain/batch/sweep.hpp"
 #include "radchain/batch/table.hpp"
@@ -117,210 +118,75 @@ void check_sweep_size(double points, bool allow_large) {
                      fmt::format("more than {:g} points: pass allow_large=True if that is meant", SweepOptions::large_points));
 }
 
-class Session {
- public:
-  Session(std::string path, std::optional<std::string> text, std::vector<Override> overrides)
-      : path_(std::move(path)), text_(std::move(text)), overrides_(std::move(overrides)) {
-    chain_ = build(overrides_, si_);
-    remember_unknowns();
-  }
-
-  const std::string& path() const { return path_; }
-  std::string sensor_name() const { return chain_.sensor_name; }
-  std::string description() const { return chain_.description; }
-  std::vector<std::string> solved() const {
-    std::vector<std::string> u;
-    for (const auto& s : chain_.solves) u.push_back(s.unknown);
-    return u;
-  }
-  std::vector<std::pair<std::string, std::string>> overrides() const {
-    std::vector<std::pair<std::string, std::string>> o;
-    for (const auto& x : overrides_) o.emplace_back(x.key, x.value);
-    return o;
-  }
-  std::vector<std::pair<std::string, double>> si_values() const { return si_; }
-
-  // set(key, "25 cm"): TOML value text, applied as `--set` is (the chain is rebuilt: the located messages are the
-  // command line's). Nothing changes when it is refused.
-  void set_text(const std::string& key, const std::string& value) {
-    std::vector<Override> overrides = overrides_;
-    bool replaced = false;
-    for (auto& o : overrides)
-      if (o.key == key) o.value = value, replaced = true;
-    if (!replaced) overrides.push_back(Override{key, value});
-    std::vector<std::pair<std::string, double>> si = si_;
-    std::erase_if(si, [&](const auto& x) { return x.first == key; });
-    Chain chain = build(overrides, si);
-    chain_ = std::move(chain);
-    overrides_ = std::move(overrides), si_ = std::move(si);
-    remember_unknowns();
-    evaluator_.reset();
-  }
-
-  // set(key, 0.25): a numeric parameter in SI, checked against its range, set through Chain::set (nothing rebuilt).
-  void set_si(const std::string& key, double value) {
-    const ParameterRef p = numeric_parameter(chain_, key, "set " + key);
-    check_parameter_value(chain_, key, value, "set " + key, key + " = " + py::repr(py::float_(value)).cast<std::string>());
-    chain_.set(p, value);
-    std::erase_if(overrides_, [&](const Override& o) { return o.key == key; });
-    bool replaced = false;
-    for (auto& x : si_)
-      if (x.first == key) x.second = value, replaced = true;
-    if (!replaced) si_.emplace_back(key, value);
-    remember_unknowns_after_set(key, value);
-    evaluator_.reset();
-  }
-
-  // The current value (SI) of a numeric parameter.
-  double get(const std::string& key) { return numeric_parameter(chain_, key, "get " + key).value(); }
-  std::string si_unit(const std::string& key) { return numeric_parameter_si_unit(chain_, key, "set " + key); }
-
-  // Every result, solves and [expected] checks, from the parameters as set (solved unknowns from their set
-  // values): `radchain run --set ...`.
-  Report run() {
-    reset_unknowns();
-    return chain_.run();
-  }
-  // Forward only: `radchain run --no-solve --set ...`.
-  Report evaluate() {
-    reset_unknowns();
-    std::vector<SolveSpec> solves = std::move(chain_.solves);
-    chain_.solves.clear();
-    Report report;
-    try {
-      report = chain_.run();
-    } catch (...) {
-      chain_.solves = std::move(solves);
-      throw;
-    }
-    chain_.solves = std::move(solves);
-    return report;
-  }
-  double value(const std::string& name) const { return chain_.result(name); }
-  bool has_result(const std::string& name) const { return chain_.results().find(name).has_value(); }
-  // "no such result" with the nearest name, as the CLI says it.
-  std::string unknown_result(const std::string& name) const {
-    std::vector<std::string> names;
-    for (std::size_t i = 0; i < chain_.results().size(); ++i) names.push_back(chain_.results().info(i).name);
-    const std::string near = nearest_match(name, names);
-    return fmt::format("{}: no such result{}", name, near.empty() ? "" : " (did you mean \"" + near + "\"?)");
-  }
-
-  // A fresh chain as the session builds it (compare's inputs).
-  Chain fresh_chain() const { return build(overrides_, si_); }
-
-  // Points: values[p] is parameter p at every point (SI). Returns (result names, SI units, out[r][i], ok[i],
-  // failed count, first failure).
-  py::tuple sweep(const std::vector<std::string>& keys, const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& arrays,
-                  const std::vector<std::string>& results, bool no_solve, bool allow_large) {
-    if (keys.size() != arrays.size()) throw std::invalid_argument("sweep: one array per parameter");
-    std::size_t count = 0;
-    for (std::size_t p = 0; p < arrays.size(); ++p) {
-      if (arrays[p].ndim() != 1) throw std::invalid_argument("sweep: 1-D arrays expected");
-      const auto n = static_cast<std::size_t>(arrays[p].shape(0));
-      if (p == 0) count = n;
-      else if (n != count) throw std::invalid_argument("sweep: arrays of different lengths");
-    }
-    check_sweep_size(static_cast<double>(count), allow_large);
-    // The values are copied (block by block, below) before they are checked: the caller's arrays may be changed by
-    // another thread while the GIL is released, and a value must not change between its check and its use.
-    std::vector<std::unique_ptr<double[]>> pinned;
-    std::vector<const double*> values;
-    for (std::size_t p = 0; p < arrays.size(); ++p) {
-      pinned.emplace_back(new double[count]);  // (not zeroed: every value is copied before it is read)
-      values.push_back(pinned.back().get());
-    }
-    std::string key = no_solve ? "no-solve\n" : "solve\n";
-    for (const auto& k : keys) key += "p " + k + "\n";
-    for (const auto& r : results) key += "r " + r + "\n";
-    {
-      py::gil_scoped_release release;
-      if (!evaluator_ || evaluator_key_ != key) {
-        evaluator_.reset();
-        PointsJob job;
-        job.make_chain = [path = path_, text = text_, overrides = overrides_, si = si_] {
-          return build_chain(path, text, overrides, si);
-        };
-        job.parameters = keys;
-        job.results = results;
-        job.no_solve = no_solve;
-        evaluator_ = std::make_unique<PointsEvaluator>(std::move(job));
-        evaluator_key_ = key;
-      }
-    }
-    const std::size_t n_results = evaluator_->results().size();
-    py::array_t<double> out({static_cast<py::ssize_t>(n_results), static_cast<py::ssize_t>(count)});
-    py::array_t<bool> ok(static_cast<py::ssize_t>(count));
-    double* out_data = out.mutable_data();
-    char* ok_data = reinterpret_cast<char*>(ok.mutable_data());
-    std::string failure;
-    std::size_t failed = 0;
-    // In blocks, with Python's signal check between them: Ctrl-C (KeyboardInterrupt) stops a long sweep within a
-    // block's time (2^18 points: ~0.1 s of solves on 2 cores), and the partial arrays are dropped with the exception.
-    // Each block's values are copied (with the GIL held: no Python thread writes meanwhile) and checked before it runs.
-    constexpr std::size_t block = std::size_t{1} << 18;
-    for (std::size_t begin = 0; begin < count; begin += block) {
-      const std::size_t end = std::min(count, begin + block);
-      for (std::size_t p = 0; p < arrays.size(); ++p)
-        std::copy(arrays[p].data() + begin, arrays[p].data() + end, pinned[p].get() + begin);
-      std::string block_failure;
-      {
-        py::gil_scoped_release release;
-        evaluator_->check(values.data(), begin, end);
-        failed += evaluator_->run_range(values.data(), count, begin, end, out_data, ok_data, &block_failure);
-      }
-      if (failure.empty()) failure = block_failure;
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    }
-    return py::make_tuple(evaluator_->results(), evaluator_->result_units(), out, ok, failed, failure);
-  }
-
+// The library's Session (radchain/batch/session.hpp) and what Python adds to it: one call at a time.
+struct PySession {
+  PySession(std::string path, std::optional<std::string> text, std::vector<Override> overrides)
+      : session(std::move(path), std::move(text), std::move(overrides)) {}
+  Session session;
   std::mutex mutex;  // one call at a time (the GIL is released while the chain works)
   std::atomic<std::thread::id> holder{};  // the thread inside a call: a Python stage calling back is refused
-
- private:
-  static Chain build_chain(const std::string& path, const std::optional<std::string>& text,
-                           const std::vector<Override>& overrides, const std::vector<std::pair<std::string, double>>& si) {
-    Chain chain = text ? load_sensor_text(*text, path, overrides) : load_sensor(path, overrides);
-    for (const auto& [key, value] : si) chain.set(chain.parameter(key), value);
-    return chain;
-  }
-  Chain build(const std::vector<Override>& overrides, const std::vector<std::pair<std::string, double>>& si) const {
-    return build_chain(path_, text_, overrides, si);
-  }
-  // The solved unknowns' values as built: each run starts its solves from them.
-  void remember_unknowns() {
-    unknowns_.clear();
-    for (const auto& s : chain_.solves) {
-      const ParameterRef p = chain_.parameter(s.unknown);
-      unknowns_.emplace_back(p, p.value());
-    }
-  }
-  void remember_unknowns_after_set(const std::string& key, double value) {
-    for (std::size_t i = 0; i < chain_.solves.size() && i < unknowns_.size(); ++i)
-      if (chain_.solves[i].unknown == key) unknowns_[i].second = value;
-  }
-  void reset_unknowns() {
-    for (const auto& [p, v] : unknowns_)
-      if (p.value() != v) chain_.set(p, v);
-  }
-
-  std::string path_;
-  std::optional<std::string> text_;
-  std::vector<Override> overrides_;
-  std::vector<std::pair<std::string, double>> si_;
-  Chain chain_;
-  std::vector<std::pair<ParameterRef, double>> unknowns_;
-  std::unique_ptr<PointsEvaluator> evaluator_;
-  std::string evaluator_key_;
 };
+
+// Points: values[p] is parameter p at every point (SI). Returns (result names, SI units, out[r][i], ok[i],
+// failed count, first failure).
+py::tuple sweep_points(Session& session, const std::vector<std::string>& keys,
+                       const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& arrays,
+                       const std::vector<std::string>& results, bool no_solve, bool allow_large) {
+  if (keys.size() != arrays.size()) throw std::invalid_argument("sweep: one array per parameter");
+  std::size_t count = 0;
+  for (std::size_t p = 0; p < arrays.size(); ++p) {
+    if (arrays[p].ndim() != 1) throw std::invalid_argument("sweep: 1-D arrays expected");
+    const auto n = static_cast<std::size_t>(arrays[p].shape(0));
+    if (p == 0) count = n;
+    else if (n != count) throw std::invalid_argument("sweep: arrays of different lengths");
+  }
+  check_sweep_size(static_cast<double>(count), allow_large);
+  // The values are copied (block by block, below) before they are checked: the caller's arrays may be changed by
+  // another thread while the GIL is released, and a value must not change between its check and its use.
+  std::vector<std::unique_ptr<double[]>> pinned;
+  std::vector<const double*> values;
+  for (std::size_t p = 0; p < arrays.size(); ++p) {
+    pinned.emplace_back(new double[count]);  // (not zeroed: every value is copied before it is read)
+    values.push_back(pinned.back().get());
+  }
+  PointsEvaluator* evaluator = nullptr;
+  {
+    py::gil_scoped_release release;
+    evaluator = &session.points(keys, results, no_solve);
+  }
+  const std::size_t n_results = evaluator->results().size();
+  py::array_t<double> out({static_cast<py::ssize_t>(n_results), static_cast<py::ssize_t>(count)});
+  py::array_t<bool> ok(static_cast<py::ssize_t>(count));
+  double* out_data = out.mutable_data();
+  char* ok_data = reinterpret_cast<char*>(ok.mutable_data());
+  std::string failure;
+  std::size_t failed = 0;
+  // In blocks, with Python's signal check between them: Ctrl-C (KeyboardInterrupt) stops a long sweep within a
+  // block's time (2^18 points: ~0.1 s of solves on 2 cores), and the partial arrays are dropped with the exception.
+  // Each block's values are copied (with the GIL held: no Python thread writes meanwhile) and checked before it runs.
+  constexpr std::size_t block = std::size_t{1} << 18;
+  for (std::size_t begin = 0; begin < count; begin += block) {
+    const std::size_t end = std::min(count, begin + block);
+    for (std::size_t p = 0; p < arrays.size(); ++p)
+      std::copy(arrays[p].data() + begin, arrays[p].data() + end, pinned[p].get() + begin);
+    std::string block_failure;
+    {
+      py::gil_scoped_release release;
+      evaluator->check(values.data(), begin, end);
+      failed += evaluator->run_range(values.data(), count, begin, end, out_data, ok_data, &block_failure);
+    }
+    if (failure.empty()) failure = block_failure;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+  return py::make_tuple(evaluator->results(), evaluator->result_units(), out, ok, failed, failure);
+}
 
 // One call's hold on its session. The mutex is taken with the GIL released, so that a thread waiting for it never
 // holds the GIL that the thread holding it may need. A Python stage of the session's chain that calls back into the
 // session (its own thread holds the mutex) would wait for ever: refused instead.
 class SessionCall {
  public:
-  explicit SessionCall(Session& s) : s_(s), lock_(s.mutex, std::defer_lock) {
+  explicit SessionCall(PySession& s) : s_(s), lock_(s.mutex, std::defer_lock) {
     if (s.holder.load() == std::this_thread::get_id())
       throw std::runtime_error("this Session is busy with a call that is still running (a Python stage called back "
                                "into its own session): use another Session (radchain.load) inside a stage");
@@ -335,13 +201,13 @@ class SessionCall {
   SessionCall& operator=(const SessionCall&) = delete;
 
  private:
-  Session& s_;
+  PySession& s_;
   std::unique_lock<std::mutex> lock_;
 };
 
 // Calls f() with the session held (SessionCall) and the GIL held.
 template <class F>
-auto locked(Session& s, F&& f) {
+auto locked(PySession& s, F&& f) {
   const SessionCall call(s);
   return f();
 }
@@ -811,31 +677,16 @@ std::string uncertainty(const std::string& path, const std::vector<std::pair<std
 }
 
 CompareInput compare_input(const py::object& x, const std::vector<Override>& overrides, bool solve) {
-  if (py::isinstance<Session>(x)) {
-    Session& s = x.cast<Session&>();
+  if (py::isinstance<PySession>(x)) {
+    PySession& s = x.cast<PySession&>();
     return locked(s, [&] {
       py::gil_scoped_release release;
-      CompareInput input;
-      input.path = s.path();
-      input.chain = s.fresh_chain();
-      if (!solve) input.chain->drop_solves();
-      input.report = solve ? s.run() : s.evaluate();
-      input.sensor_name = input.report.sensor_name;
-      return input;
+      return s.session.compare_input(solve);
     });
   }
   const std::string path = x.cast<std::string>();
   py::gil_scoped_release release;
   return load_compare_input(path, overrides, solve);
-}
-
-// The status `radchain compare` prints for a result (compare.cpp): same, ok, differs, EXCEEDS, only in A/B.
-std::string result_status(const ResultDifference& r, std::optional<double> tolerance) {
-  if (!r.in_a) return tolerance ? "EXCEEDS (only in B)" : "only in B";
-  if (!r.in_b) return tolerance ? "EXCEEDS (only in A)" : "only in A";
-  if (r.same()) return "same";
-  if (tolerance) return r.exceeds(*tolerance) ? "EXCEEDS" : "ok";
-  return r.exceeds(rounding_tolerance) ? "differs" : "ok";
 }
 
 py::list compare(const py::object& a, const py::object& b, const std::vector<std::pair<std::string, std::string>>& sets,
@@ -876,7 +727,7 @@ py::list compare(const py::object& a, const py::object& b, const std::vector<std
     r["si_unit"] = "";
     r["delta"] = d.in_a && d.in_b ? d.delta() : nan;
     r["delta_pct"] = d.in_a && d.in_b ? 100 * d.relative() : nan;
-    r["status"] = result_status(d, tolerance);
+    r["status"] = d.status(tolerance);
     rows.append(r);
   }
   return rows;
@@ -957,50 +808,56 @@ PYBIND11_MODULE(_radchain, m) {
       .def("text", &format_report_text, "the report as `radchain run` prints it")
       .def("display", [](const Report& r, std::size_t i) { return format_value(r.values.at(i), r.results.at(i)); });
 
-  py::class_<Session>(m, "Session")
-      .def_property_readonly("path", &Session::path)
-      .def_property_readonly("sensor", &Session::sensor_name)
-      .def_property_readonly("description", &Session::description)
-      .def_property_readonly("solved", &Session::solved)
-      .def_property_readonly("overrides", &Session::overrides)
-      .def_property_readonly("si_values", &Session::si_values)
-      .def("set_text", [](Session& s, const std::string& key, const std::string& value) {
+  py::class_<PySession>(m, "Session")
+      .def_property_readonly("path", [](const PySession& s) { return s.session.path(); })
+      .def_property_readonly("sensor", [](const PySession& s) { return s.session.sensor_name(); })
+      .def_property_readonly("description", [](const PySession& s) { return s.session.description(); })
+      .def_property_readonly("solved", [](const PySession& s) { return s.session.solved(); })
+      .def_property_readonly("overrides", [](const PySession& s) {
+        std::vector<std::pair<std::string, std::string>> o;
+        for (const auto& x : s.session.overrides()) o.emplace_back(x.key, x.value);
+        return o;
+      })
+      .def_property_readonly("si_values", [](const PySession& s) { return s.session.si_values(); })
+      .def("set_text", [](PySession& s, const std::string& key, const std::string& value) {
         const SessionCall call(s);
         py::gil_scoped_release release;
-        s.set_text(key, value);
+        s.session.set_text(key, value);
       })
-      .def("set_si", [](Session& s, const std::string& key, double value) { locked(s, [&] { s.set_si(key, value); }); })
-      .def("get", [](Session& s, const std::string& key) { return locked(s, [&] { return s.get(key); }); })
-      .def("si_unit", [](Session& s, const std::string& key) { return locked(s, [&] { return s.si_unit(key); }); })
-      .def("run", [](Session& s) {
+      .def("set_si", [](PySession& s, const std::string& key, double value) {
+        locked(s, [&] { s.session.set_si(key, value); });
+      })
+      .def("get", [](PySession& s, const std::string& key) { return locked(s, [&] { return s.session.get(key); }); })
+      .def("si_unit", [](PySession& s, const std::string& key) { return locked(s, [&] { return s.session.si_unit(key); }); })
+      .def("run", [](PySession& s) {
         const SessionCall call(s);
         py::gil_scoped_release release;
-        return s.run();
+        return s.session.run();
       })
-      .def("evaluate", [](Session& s) {
+      .def("evaluate", [](PySession& s) {
         const SessionCall call(s);
         py::gil_scoped_release release;
-        return s.evaluate();
+        return s.session.run(Solving::forward_only);
       })
-      .def("value", [](Session& s, const std::string& name) {
+      .def("value", [](PySession& s, const std::string& name) {
         return locked(s, [&] {
-          if (!s.has_result(name)) throw py::key_error(s.unknown_result(name));
-          return s.value(name);
+          if (!s.session.has_result(name)) throw py::key_error(name + ": " + s.session.no_such_result(name));
+          return s.session.value(name);
         });
       })
-      .def("sweep", [](Session& s, const std::vector<std::string>& keys,
+      .def("sweep", [](PySession& s, const std::vector<std::string>& keys,
                        const std::vector<py::array_t<double, py::array::c_style | py::array::forcecast>>& arrays,
                        const std::vector<std::string>& results, bool no_solve, bool allow_large) {
-        return locked(s, [&] { return s.sweep(keys, arrays, results, no_solve, allow_large); });
+        return locked(s, [&] { return sweep_points(s.session, keys, arrays, results, no_solve, allow_large); });
       });
 
   m.def("load", [](const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets) {
     py::gil_scoped_release release;
-    return std::make_unique<Session>(path, std::nullopt, to_overrides(sets));
+    return std::make_unique<PySession>(path, std::nullopt, to_overrides(sets));
   });
   m.def("loads", [](const std::string& text, const std::string& name, const std::vector<std::pair<std::string, std::string>>& sets) {
     py::gil_scoped_release release;
-    return std::make_unique<Session>(name, text, to_overrides(sets));
+    return std::make_unique<PySession>(name, text, to_overrides(sets));
   });
   m.def("describe", &describe);
   m.def("plugins", &plugins);

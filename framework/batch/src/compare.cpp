@@ -240,14 +240,6 @@ std::string value_cell(double v) { return std::isnan(v) ? "" : fmt::format("{:.6
 std::string delta_cell(double v) { return std::isnan(v) ? "" : fmt::format("{:+.4g}", v); }
 std::string pct_cell(double relative) { return std::isnan(relative) ? "" : fmt::format("{:+.3g}", 100 * relative); }
 
-std::string result_status(const ResultDifference& r, std::optional<double> tolerance) {
-  if (!r.in_a) return tolerance ? "EXCEEDS (only in B)" : "only in B";
-  if (!r.in_b) return tolerance ? "EXCEEDS (only in A)" : "only in A";
-  if (r.same()) return "same";
-  if (tolerance) return r.exceeds(*tolerance) ? "EXCEEDS" : "ok";
-  return r.exceeds(rounding_tolerance) ? "differs" : "ok";
-}
-
 // The solved unknowns (A's solves, then B's) to the front, each group in its previous order.
 void solved_unknowns_first(const Report& a, const Report& b, std::vector<ResultDifference>& results) {
   std::vector<std::string> unknowns;
@@ -269,6 +261,14 @@ TableLayout comparison_layout() {
 }
 
 }  // namespace
+
+std::string ResultDifference::status(std::optional<double> tolerance) const {
+  if (!in_a) return tolerance ? "EXCEEDS (only in B)" : "only in B";
+  if (!in_b) return tolerance ? "EXCEEDS (only in A)" : "only in A";
+  if (same()) return "same";
+  if (tolerance) return exceeds(*tolerance) ? "EXCEEDS" : "ok";
+  return exceeds(rounding_tolerance) ? "differs" : "ok";
+}
 
 double ResultDifference::delta() const { return (b_si - a_si) * factor; }
 
@@ -410,7 +410,7 @@ std::string format_comparison_text(const Comparison& c, std::optional<double> to
       const auto& r = c.results[i];
       writer.row(i, {r.name, value_cell(r.in_a ? r.a_si * r.factor : nan), value_cell(r.in_b ? r.b_si * r.factor : nan),
                      r.unit == "1" ? "" : r.unit, r.in_a && r.in_b ? delta_cell(r.delta()) : "",
-                     r.in_a && r.in_b ? pct_cell(r.relative()) : "", result_status(r, tolerance)});
+                     r.in_a && r.in_b ? pct_cell(r.relative()) : "", r.status(tolerance)});
     }
     writer.finish(0);
   }
@@ -443,7 +443,7 @@ void write_comparison(const Comparison& c, TableFormat format, std::ostream& out
     writer.row(point++, {"result", r.name, r.in_a ? number_cell(r.a_si * r.factor) : "",
                          r.in_b ? number_cell(r.b_si * r.factor) : "", r.unit == "1" ? "" : r.unit,
                          r.in_a && r.in_b ? delta_cell(r.delta()) : "", r.in_a && r.in_b ? pct_cell(r.relative()) : "",
-                         result_status(r, tolerance)});
+                         r.status(tolerance)});
   writer.finish(tolerance && count_exceeding(c, *tolerance) > 0 ? 1 : 0);
 }
 

@@ -2,6 +2,7 @@
 #include "radchain/batch/points.hpp"
 
 #include "radchain/batch/catalogue.hpp"
+#include "radchain/batch/point_engine.hpp"
 #include "radchain/batch/thread_pool.hpp"
 #include "radchain/error.hpp"
 #include "parameter_lookup.hpp"
@@ -59,117 +60,60 @@ void check_parameter_value(Chain& chain, const std::string& key, double value_si
 
 // --- PointsEvaluator::Worker ---------------------------------------------------------------------------------
 
+// One thread's point engine, fed points from the job's arrays.
 class PointsEvaluator::Worker {
  public:
-  Worker(const PointsEvaluator& owner) : owner_(owner), chain_(owner.job_.make_chain()) {
-    if (owner.job_.no_solve) chain_.drop_solves();
-    for (const auto& key : owner.job_.parameters) parameters_.push_back(chain_.parameter(key));
-    for (const auto& s : chain_.solves) {
-      const ParameterRef p = chain_.parameter(s.unknown);
-      unknowns_.emplace_back(p, p.value());
-    }
-    for (const auto& name : owner.results_) {
-      Column column{*chain_.results().find(name), false};
-      for (const auto& s : chain_.solves) column.solved = column.solved || s.unknown == name;
-      columns_.push_back(column);
-    }
-    std::vector<ResultId> asked;
-    for (const Column& c : columns_) asked.push_back(c.id);
-    chain_.focus(asked);
-    lanes_ = chain_.solves.size() <= 1 && (chain_.solves.empty() || chain_.lanes_can_solve());
-    for (const ParameterRef& p : parameters_) lanes_ = lanes_ && !p.spectral();
+  explicit Worker(const PointsEvaluator& owner)
+      : owner_(owner),
+        engine_(owner.job_.make_chain(owner.job_.no_solve ? Solving::forward_only : Solving::as_written),
+                owner.job_.parameters, owner.results_, PointEngine::Scale::si,
+                [this](std::size_t k) { return point_name(first_ + k); }) {
+    lanes_.resize(owner.job_.parameters.size());
   }
 
   // Points [begin, end) of a run of `count` points; the first failure's message into `failure` (if empty).
   std::size_t evaluate(const double* const* values, std::size_t count, std::size_t begin, std::size_t end, double* out,
                        char* ok, std::string& failure) {
+    values_ = values;
     std::size_t failed = 0;
-    if (lanes_) {
-      std::vector<Lanes> lanes(parameters_.size());
-      for (std::size_t i = begin; i < end; i += lane_count) {
-        const std::size_t n = std::min<std::size_t>(lane_count, end - i);
-        // A short group repeats its last point in the unused lanes.
-        for (std::size_t p = 0; p < parameters_.size(); ++p)
-          for (int lane = 0; lane < lane_count; ++lane)
-            lanes[p](lane) = values[p][i + std::min<std::size_t>(static_cast<std::size_t>(lane), n - 1)];
-        chain_.clear_lanes();
-        for (std::size_t p = 0; p < parameters_.size(); ++p) chain_.set_lanes(parameters_[p], lanes[p]);
-        if (chain_.solves.empty()) {
-          chain_.evaluate_lanes(Detail::full);
-          std::fill(ok + i, ok + i + n, 1);
-        } else {
-          chain_.solve_lanes(outcome_);
-          for (std::size_t k = 0; k < n; ++k) {
-            ok[i + k] = outcome_.converged[k] ? 1 : 0;
-            if (outcome_.converged[k]) continue;
-            ++failed;
-            if (failure.empty()) failure = message(values, i + k, outcome_.message[k]);
-          }
-        }
-        for (std::size_t c = 0; c < columns_.size(); ++c) {
-          const Lanes& result = chain_.lane_result(columns_[c].id);
-          double* column = out + c * count;
-          for (std::size_t k = 0; k < n; ++k)
-            column[i + k] = (columns_[c].solved && !ok[i + k]) ? std::numeric_limits<double>::quiet_NaN()
-                                                                : result(static_cast<int>(k));
-        }
+    const std::size_t n_parameters = lanes_.size();
+    for (std::size_t i = begin; i < end; i += lane_count) {
+      const std::size_t n = std::min<std::size_t>(lane_count, end - i);
+      // A short group repeats its last point in the unused lanes.
+      for (std::size_t p = 0; p < n_parameters; ++p)
+        for (int lane = 0; lane < lane_count; ++lane)
+          lanes_[p](lane) = values[p][i + std::min<std::size_t>(static_cast<std::size_t>(lane), n - 1)];
+      first_ = i;
+      engine_.evaluate_group(lanes_, n, PointEngine::Output{out + i, 1, count}, ok + i);
+      for (std::size_t k = 0; k < n; ++k) {
+        if (ok[i + k]) continue;
+        ++failed;
+        if (failure.empty()) failure = engine_.failure(k);
       }
-      return failed;
-    }
-    for (std::size_t i = begin; i < end; ++i) {
-      for (std::size_t p = 0; p < parameters_.size(); ++p)
-        if (parameters_[p].value() != values[p][i]) chain_.set(parameters_[p], values[p][i]);
-      // Every point starts from the chain's values of the solved unknowns (not the last point's roots).
-      for (const auto& [parameter, initial] : unknowns_)
-        if (parameter.value() != initial) chain_.set(parameter, initial);
-      bool converged = true;
-      if (chain_.solves.empty()) {
-        chain_.evaluate();
-      } else {
-        chain_.solve_all(outcomes_);
-        for (const auto& o : outcomes_)
-          if (!o.converged) {
-            if (converged && failure.empty()) failure = message(values, i, o.spec.unknown + ": " + o.message);
-            converged = false;
-          }
-      }
-      ok[i] = converged ? 1 : 0;
-      failed += converged ? 0 : 1;
-      for (std::size_t c = 0; c < columns_.size(); ++c)
-        out[c * count + i] = (columns_[c].solved && !converged) ? std::numeric_limits<double>::quiet_NaN()
-                                                                : chain_.results().value(columns_[c].id);
     }
     return failed;
   }
 
  private:
-  // "point 17 (optics.aperture = 0.2 m): the solve for target.magnitude failed: ..."
-  std::string message(const double* const* values, std::size_t i, const std::string& why) const {
+  // "point 17 (optics.aperture = 0.2)"
+  std::string point_name(std::size_t i) const {
     std::string at;
-    for (std::size_t p = 0; p < parameters_.size(); ++p)
-      at += fmt::format("{}{} = {:.17g}", p ? ", " : "", owner_.job_.parameters[p], values[p][i]);
-    return fmt::format("point {} ({}): the solve for {} failed: {}", i, at,
-                       chain_.solves.empty() ? std::string() : chain_.solves[0].unknown, why);
+    for (std::size_t p = 0; p < lanes_.size(); ++p)
+      at += fmt::format("{}{} = {:.17g}", p ? ", " : "", owner_.job_.parameters[p], values_[p][i]);
+    return fmt::format("point {} ({})", i, at);
   }
 
-  struct Column {
-    ResultId id;
-    bool solved;  // a solved unknown: NaN where its solve failed
-  };
   const PointsEvaluator& owner_;
-  Chain chain_;
-  std::vector<ParameterRef> parameters_;
-  std::vector<std::pair<ParameterRef, double>> unknowns_;
-  std::vector<Column> columns_;
-  std::vector<SolveOutcome> outcomes_;
-  LaneSolveOutcome outcome_;
-  bool lanes_ = false;
+  PointEngine engine_;
+  std::vector<Lanes> lanes_;
+  const double* const* values_ = nullptr;  // the current run's arrays
+  std::size_t first_ = 0;                  // the current group's first point
 };
 
 // --- PointsEvaluator ----------------------------------------------------------------------------------------
 
-PointsEvaluator::PointsEvaluator(PointsJob job) : job_(std::move(job)), checker_(job_.make_chain()) {
-  if (job_.no_solve) checker_.drop_solves();
+PointsEvaluator::PointsEvaluator(PointsJob job)
+    : job_(std::move(job)), checker_(job_.make_chain(job_.no_solve ? Solving::forward_only : Solving::as_written)) {
   for (std::size_t p = 0; p < job_.parameters.size(); ++p) {
     const std::string& key = job_.parameters[p];
     const std::string where = "sweep " + key;

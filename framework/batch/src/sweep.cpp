@@ -162,6 +162,20 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
 
 namespace {
 
+// "optics.aperture = 20 cm, target.magnitude = 15" (axis values as written in the row).
+std::string point_text(const std::vector<SweepAxis>& axes, const double* row) {
+  std::string at;
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    at += fmt::format("{}{} = {:g}{}", a ? ", " : "", axes[a].key, row[a], axes[a].unit.empty() ? "" : " " + axes[a].unit);
+  return at;
+}
+
+std::vector<std::string> axis_keys(const std::vector<SweepAxis>& axes) {
+  std::vector<std::string> keys;
+  for (const auto& a : axes) keys.push_back(a.key);
+  return keys;
+}
+
 // The sensor as every point starts from: fixed overrides applied, solves dropped with --no-solve.
 Chain load_swept_sensor(const SweepOptions& options) {
   Chain chain = load_sensor(options.sensor_file, options.overrides,
@@ -338,48 +352,14 @@ int Sweep::run(TableWriter& writer, std::string* failure,
 
 // --- SweepWorker -------------------------------------------------------------------------------------------
 
-// "optics.aperture = 20 cm, target.magnitude = 15" (axis values as written in the row).
-static std::string point_text(const std::vector<SweepAxis>& axes, const double* row) {
-  std::string at;
-  for (std::size_t a = 0; a < axes.size(); ++a)
-    at += fmt::format("{}{} = {:g}{}", a ? ", " : "", axes[a].key, row[a], axes[a].unit.empty() ? "" : " " + axes[a].unit);
-  return at;
-}
-
-// "at optics.aperture = 20 cm: the solve for target.magnitude failed: <why>".
-static std::string solve_failure(const std::vector<SweepAxis>& axes, const double* row, const std::string& unknown,
-                                 const std::string& why) {
-  return fmt::format("at {}: the solve for {} failed: {}", point_text(axes, row), unknown, why);
-}
-
-// A point the chain refuses (a look past the horizon): the whole sweep stops with the point named, exit 2.
-static InputError at_point(const InputError& error, const std::vector<SweepAxis>& axes, const double* row) {
-  return error.with_context(fmt::format("at {}, {}", point_text(axes, row), error.context()));
-}
-
 SweepWorker::SweepWorker(const Sweep& sweep)
-    : sweep_(sweep), chain_(load_swept_sensor(sweep.options())) {
-  for (const auto& a : sweep.axes()) axes_.push_back(chain_.parameter(a.key));
-  for (const auto& s : chain_.solves) {
-    const ParameterRef p = chain_.parameter(s.unknown);
-    unknowns_.emplace_back(p, p.value());
-  }
-  for (const auto& name : sweep.results()) {
-    const ResultId id = *chain_.results().find(name);
-    bool solved = false;
-    for (const auto& s : chain_.solves) solved = solved || s.unknown == name;
-    columns_.push_back(Column{id, chain_.results().info(id).display_factor, solved});
-  }
-  std::vector<ResultId> asked;
-  for (const Column& c : columns_) asked.push_back(c.id);
-  chain_.focus(asked);
-  index_.resize(axes_.size());
-  axis_values_.resize(axes_.size());
-  lanes_ = chain_.solves.size() <= 1 && (chain_.solves.empty() || chain_.lanes_can_solve());
-  for (const ParameterRef& a : axes_) lanes_ = lanes_ && !a.spectral();
-  // Only solved values read (limiting magnitudes): the evaluation at the roots needs no noise breakdown.
-  if (std::all_of(columns_.begin(), columns_.end(), [](const Column& c) { return c.solved; }))
-    lane_outcome_.final_detail = Detail::essential;
+    : sweep_(sweep),
+      engine_(load_swept_sensor(sweep.options()), axis_keys(sweep.axes()), sweep.results(), PointEngine::Scale::display,
+              [this](std::size_t k) { return "at " + point_text(sweep_.axes(), rows_ + k * sweep_.columns()); }) {
+  index_.resize(sweep.axes().size());
+  axis_values_.resize(sweep.axes().size());
+  values_.resize(sweep.axes().size());
+  scalar_.resize(sweep.axes().size());
 }
 
 const SweepWorker::AxisValue& SweepWorker::axis_value(std::size_t axis) {
@@ -391,109 +371,46 @@ const SweepWorker::AxisValue& SweepWorker::axis_value(std::size_t axis) {
   return v;
 }
 
-void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, double* out, char* ok) {
-  const std::size_t n_columns = sweep_.columns();
-  if (!lanes_) {
-    for (std::size_t k = 0; k < count; ++k) {
-      ok[k] = evaluate(points[k], out + k * n_columns) ? 1 : 0;
-      failures_[k] = failure_;
-    }
-    return;
-  }
+void SweepWorker::locate(std::size_t point) {
   const auto& axes = sweep_.axes();
+  for (std::size_t a = axes.size(); a-- > 0;) {
+    index_[a] = point % axes[a].steps;
+    point /= axes[a].steps;
+  }
+}
+
+void SweepWorker::place(double* row, int lane) {
+  for (std::size_t a = 0; a < index_.size(); ++a) {
+    const AxisValue& v = axis_value(a);
+    values_[a](lane) = v.value_si;
+    if (row) row[a] = v.value;
+  }
+}
+
+void SweepWorker::evaluate_group(const std::size_t* points, std::size_t count, double* out, char* ok) {
+  const auto& axes = sweep_.axes();
+  const std::size_t n_columns = sweep_.columns();
   // Each axis's value per lane; a short group repeats its last point in the unused lanes.
-  std::vector<Lanes>& values = lane_values_;
-  values.resize(axes.size());
   for (int lane = 0; lane < lane_count; ++lane) {
     const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(lane), count - 1);
     if (lane > 0 && k == static_cast<std::size_t>(lane) && points[k] == points[k - 1] + 1) {
       // The next point (the usual case): the innermost index steps, with a carry; no integer divisions.
       for (std::size_t a = axes.size(); a-- > 0 && ++index_[a] == axes[a].steps;) index_[a] = 0;
     } else if (lane == 0 || k == static_cast<std::size_t>(lane)) {
-      std::size_t point = points[k];
-      for (std::size_t a = axes.size(); a-- > 0;) {
-        index_[a] = point % axes[a].steps;
-        point /= axes[a].steps;
-      }
+      locate(points[k]);
     }  // (else a short group's unused lane: index_ still holds its last point)
-    for (std::size_t a = 0; a < axes.size(); ++a) {
-      const AxisValue& v = axis_value(a);
-      values[a](lane) = v.value_si;
-      if (static_cast<std::size_t>(lane) < count) out[k * n_columns + a] = v.value;
-    }
+    place(static_cast<std::size_t>(lane) < count ? out + k * n_columns : nullptr, lane);
   }
-  chain_.clear_lanes();
-  for (std::size_t a = 0; a < axes.size(); ++a) chain_.set_lanes(axes_[a], values[a]);
-  std::fill(ok, ok + count, 1);
-  try {
-    if (chain_.solves.empty()) chain_.evaluate_lanes(Detail::full);
-    else chain_.solve_lanes(lane_outcome_);
-  } catch (const InputError&) {
-    // Which of the lanes' points: one at a time through the scalar path, which names it.
-    chain_.clear_lanes();
-    for (std::size_t k = 0; k < count; ++k) evaluate(points[k], out + k * n_columns);
-    throw;  // not reached unless the lanes and the scalar path disagree
-  }
-  if (!chain_.solves.empty()) {
-    for (std::size_t k = 0; k < count; ++k) {
-      failures_[k].clear();
-      if (lane_outcome_.converged[k]) continue;
-      ok[k] = 0;
-      failures_[k] = solve_failure(axes, out + k * n_columns, chain_.solves[0].unknown, lane_outcome_.message[k]);
-    }
-  }
-  const std::size_t offset = axes.size();
-  for (std::size_t k = 0; k < count; ++k)
-    for (std::size_t c = 0; c < columns_.size(); ++c) {
-      const Column& column = columns_[c];
-      out[k * n_columns + offset + c] = (column.solved && !ok[k]) ? std::numeric_limits<double>::quiet_NaN()
-                                                                  : chain_.lane_result(column.id)(static_cast<int>(k)) * column.factor;
-    }
+  rows_ = out;
+  engine_.evaluate_group(values_, count, PointEngine::Output{out + axes.size(), n_columns, 1}, ok);
 }
 
 bool SweepWorker::evaluate(std::size_t point, double* out) {
-  const auto& axes = sweep_.axes();
-  for (std::size_t a = axes.size(); a-- > 0;) {
-    index_[a] = point % axes[a].steps;
-    point /= axes[a].steps;
-  }
-  for (std::size_t a = 0; a < axes.size(); ++a) {
-    const AxisValue& v = axis_value(a);
-    out[a] = v.value;
-    if (axes_[a].value() != v.value_si) chain_.set(axes_[a], v.value_si);
-  }
-  // Every point starts from the file's values of the solved unknowns (the result must not depend on the
-  // points this thread ran before). Only what moves is marked for re-evaluation.
-  for (const auto& [parameter, initial] : unknowns_)
-    if (parameter.value() != initial) chain_.set(parameter, initial);
-  bool converged = true;
-  if (chain_.solves.empty()) {
-    try {
-      chain_.evaluate();
-    } catch (const InputError& error) {
-      throw at_point(error, axes, out);
-    }
-  } else {
-    try {
-      chain_.solve_all(outcomes_);
-    } catch (const InputError& error) {
-      throw at_point(error, axes, out);
-    }
-    for (const auto& o : outcomes_) {
-      if (o.converged) continue;
-      if (converged) {
-        failure_ = solve_failure(axes, out, o.spec.unknown, o.message);
-      }
-      converged = false;
-    }
-  }
-  const std::size_t offset = axes.size();
-  for (std::size_t c = 0; c < columns_.size(); ++c) {
-    const Column& column = columns_[c];
-    out[offset + c] = (column.solved && !converged) ? std::numeric_limits<double>::quiet_NaN()
-                                                    : chain_.results().value(column.id) * column.factor;
-  }
-  return converged;
+  locate(point);
+  place(out, 0);
+  for (std::size_t a = 0; a < values_.size(); ++a) scalar_[a] = values_[a](0);
+  rows_ = out;
+  return engine_.evaluate(scalar_.data(), PointEngine::Output{out + sweep_.axes().size(), sweep_.columns(), 1});
 }
 
 }  // namespace radchain

@@ -54,6 +54,9 @@ struct ResultDifference {
   // ~1e-15, so relative to itself any two roots differ by 100 %), else 0.
   bool exceeds(double rel_tolerance) const;
   double scale_floor() const;
+  // What `radchain compare` prints: "same", "ok", "differs" (beyond rounding) or, with a tolerance, "EXCEEDS";
+  // "only in A/B" (EXCEEDS with a tolerance).
+  std::string status(std::optional<double> rel_tolerance) const;
 };
 
 struct Comparison {

@@ -2,14 +2,11 @@
 // A sensor evaluated at arbitrary points, on all cores: every point gives each listed parameter a value in SI (one
 // array per parameter, point i reads values[p][i]), and the chain is evaluated there, its [[solve]] entries re-run
 // unless no_solve. What Python's Session.sweep() calls (python/); `radchain sweep` (sweep.hpp) steps
-// from:to:steps ranges instead, and both evaluate a point the same way:
+// from:to:steps ranges instead, through the same engine.
 //
-// Every worker thread owns a Chain built once by `make_chain` (so a chain may come from a file, from text, or
-// carry values set in SI). Points go eight at a time through the lanes (Chain::set_lanes, evaluate_lanes,
-// solve_lanes) when no parameter and no solved unknown is spectral and the file has at most one [[solve]]; else
-// one at a time (Chain::set, solve_all / evaluate). Before each point the solved unknowns go back to their values in
-// the chain as built, so a point's result does not depend on which points the thread ran before it: the output is
-// the same for any thread count.
+// Every worker thread owns a point engine (radchain/batch/point_engine.hpp: how a point is evaluated, lanes or one at
+// a time, solved unknowns reset before each point) whose Chain `make_chain` builds once (so a chain may come from a
+// file, from text, or carry values set in SI). The output is the same for any thread count.
 #include "radchain/chain.hpp"
 
 #include <cstddef>
@@ -31,7 +28,9 @@ void check_parameter_value(Chain& chain, const std::string& key, double value_si
                            const std::string& subject);
 
 struct PointsJob {
-  std::function<Chain()> make_chain;    // the sensor as every point starts from; called concurrently, once per thread
+  // The sensor as every point starts from, its [[solve]] entries performed or dropped (no_solve) as asked; called
+  // concurrently, once per thread.
+  std::function<Chain(Solving)> make_chain;
   std::vector<std::string> parameters;  // numeric parameters given per point, e.g. "optics.aperture"
   std::vector<std::string> results;     // result names; empty: every result
   bool no_solve = false;                // forward only (a solved unknown may then be a parameter)

@@ -11,6 +11,7 @@
 // Before each point the solved unknowns go back to their values in the file, so a point's result does not
 // depend on which points the thread ran before it: the output is the same for any thread count or shard.
 #include "radchain/chain.hpp"
+#include "radchain/batch/point_engine.hpp"
 #include "radchain/batch/table.hpp"
 
 #include <array>
@@ -93,34 +94,28 @@ class Sweep {
   std::string method_;
 };
 
-// One worker's chain (load_sensor once), evaluating grid points.
+// One worker's point engine (load_sensor once, radchain/batch/point_engine.hpp), fed the grid's points.
 class SweepWorker {
  public:
   explicit SweepWorker(const Sweep& sweep);
   // Evaluates a grid point into out[0 .. columns): axes in their units, results in display units. false when
   // a solve failed (failure() says why; the unknown's value is nan).
   bool evaluate(std::size_t point, double* out);
-  const std::string& failure() const { return failure_; }
+  const std::string& failure() const { return engine_.failure(0); }
   // Points points[0 .. count) (count ≤ lane_count) into consecutive rows of out; ok[k] false where a solve failed
-  // (failure_of(k) says why). In lanes (radchain/lanes.hpp) when no axis and no solved unknown is spectral and the
-  // file has at most one [[solve]]; else one point at a time. Each point's row is the same whichever points
-  // share its group.
+  // (failure_of(k) says why). Each point's row is the same whichever points share its group.
   void evaluate_group(const std::size_t* points, std::size_t count, double* out, char* ok);
-  const std::string& failure_of(std::size_t k) const { return failures_[k]; }
-  Chain& chain() { return chain_; }
+  const std::string& failure_of(std::size_t k) const { return engine_.failure(k); }
+  Chain& chain() { return engine_.chain(); }
 
  private:
-  struct Column {
-    ResultId id;
-    double factor;
-    bool solved;  // a solved unknown: nan when its solve failed
-  };
+  // The indices of `point` along each axis into index_, and each axis's value into the row (in its unit) and
+  // values_[a](lane) (SI).
+  void locate(std::size_t point);
+  void place(double* row, int lane);
   const Sweep& sweep_;
-  Chain chain_;
-  std::vector<ParameterRef> axes_;
-  std::vector<std::pair<ParameterRef, double>> unknowns_;  // solved parameters and their values in the file
-  std::vector<Column> columns_;
-  std::vector<SolveOutcome> outcomes_;
+  PointEngine engine_;
+  const double* rows_ = nullptr;  // the current call's first row (its axis values name a point in messages)
   std::vector<std::size_t> index_;
   // Each axis's value at the step it had last (as written and in SI): an outer axis keeps its step for many points,
   // and the SI value is read from text (units::to_si), the file's rule.
@@ -130,11 +125,8 @@ class SweepWorker {
   };
   std::vector<AxisValue> axis_values_;
   const AxisValue& axis_value(std::size_t axis);  // at index_[axis]
-  std::vector<Lanes> lane_values_;  // each axis's value per lane (kept: no allocation per group)
-  std::string failure_;
-  bool lanes_ = false;  // evaluate_group() in lanes
-  LaneSolveOutcome lane_outcome_;
-  std::array<std::string, lane_count> failures_;
+  std::vector<Lanes> values_;  // each axis's value per lane (kept: no allocation per group)
+  std::vector<double> scalar_;  // each axis's value at one point
 };
 
 }  // namespace radchain
