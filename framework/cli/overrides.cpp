@@ -1,6 +1,7 @@
 #include "overrides.hpp"
 
 #include "radchain/error.hpp"
+#include "radchain/strings.hpp"
 
 #include <fmt/format.h>
 
@@ -9,12 +10,8 @@
 
 namespace radchain::cli {
 namespace {
+using strings::trimmed;
 
-std::string trimmed(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t");
-  if (first == std::string::npos) return {};
-  return text.substr(first, text.find_last_not_of(" \t") - first + 1);
-}
 
 }  // namespace
 
@@ -29,11 +26,6 @@ std::vector<Override> parse_overrides(const std::vector<std::string>& sets) {
   std::vector<Override> out;
   for (const auto& s : sets) out.push_back(parse_override(s));
   return out;
-}
-
-std::string unquoted(std::string text) {
-  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = text.substr(1, text.size() - 2);
-  return text;
 }
 
 void warn_about_solved_overrides(const std::vector<SolveSpec>& solves, const std::vector<Override>& overrides,

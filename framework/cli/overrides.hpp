@@ -15,7 +15,6 @@ namespace radchain::cli {
 // line (InputError) for a malformed one.
 Override parse_override(const std::string& text);
 std::vector<Override> parse_overrides(const std::vector<std::string>& sets);
-std::string unquoted(std::string text);
 
 // One warning line per override of a key that a [[solve]] overwrites ("radchain: warning: ..."): the value
 // set is only the solver's business then, which is rarely what was meant.

@@ -333,9 +333,8 @@ py::dict describe(const std::string& name) {
   for (const KindInfo& k : kinds) kind_names.emplace_back(k.name);
   candidates.insert(candidates.end(), kind_names.begin(), kind_names.end());
   for (const char* t : {"sensor", "solve", "expected", "render", "validate"}) candidates.emplace_back(t);
-  const std::string near = nearest_match(name, candidates);
   throw InputError({}, "describe", name,
-                   "unknown plugin, kind or table" + (near.empty() ? std::string() : " (did you mean \"" + near + "\"?)") +
+                   "unknown plugin, kind or table" + did_you_mean(name, candidates) +
                        "; plugins: " + join(names) + "; kinds: " + join(kind_names) + "; tables: sensor, solve, expected; "
                        "commands: render, validate");
 }

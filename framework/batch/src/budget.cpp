@@ -255,10 +255,9 @@ void check_budget_results(Chain& chain, const std::vector<std::string>& results)
                        fmt::format("an input parameter of {}, not a result: the budget's rows are the inputs; "
                                    "`radchain run {}` lists the results",
                                    slot->params->context(), chain.sensor_file));
-    const std::string near = nearest_match(name, all);
     throw InputError(where, "", name,
                      fmt::format("no such result{}; `radchain run {}` lists them",
-                                 near.empty() ? "" : " (did you mean \"" + near + "\"?)", chain.sensor_file));
+                                 did_you_mean(name, all), chain.sensor_file));
   }
 }
 

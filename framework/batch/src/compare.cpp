@@ -1,5 +1,6 @@
 // `radchain compare A B`: every intermediate quantity side by side, and what differs in the inputs.
 #include "radchain/batch/compare.hpp"
+#include "radchain/strings.hpp"
 
 #include "radchain/error.hpp"
 #include "radchain/input_file.hpp"
@@ -19,16 +20,13 @@
 
 namespace radchain {
 namespace {
+using strings::unquoted;
+
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-std::string unquoted(std::string text) {
-  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = text.substr(1, text.size() - 2);
-  return text;
 }
 
 using batch_detail::is_numeric;

@@ -30,9 +30,8 @@ inline ParameterLookup look_up_parameter(const Chain& chain, const std::string& 
     if (s.section == section) slot = &s;
   }
   if (!slot) {
-    const std::string near = nearest_match(section, sections);
     found.problem = fmt::format("the sensor file has no section \"{}\"{}; sections: {}", section,
-                                near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(sections));
+                                did_you_mean(section, sections), join(sections));
     return found;
   }
   std::vector<std::string> numeric_keys;
@@ -46,9 +45,8 @@ inline ParameterLookup look_up_parameter(const Chain& chain, const std::string& 
   if (!found.entry && !renamed.empty()) {
     found.problem = fmt::format("{}: \"{}\" is renamed \"{}\" (one name in every plugin)", slot->params->context(), name, renamed);
   } else if (!found.entry) {
-    const std::string near = nearest_match(name, numeric_keys);
     found.problem = fmt::format("{} has no numeric parameter \"{}\"{}; its numeric parameters: {}", slot->params->context(),
-                                name, near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+                                name, did_you_mean(name, numeric_keys),
                                 numeric_keys.empty() ? "none" : join(numeric_keys));
   }
   return found;

@@ -132,10 +132,9 @@ PointsEvaluator::PointsEvaluator(PointsJob job)
   for (const auto& name : results_) {
     const auto id = results.find(name);
     if (!id) {
-      const std::string near = nearest_match(name, all);
       throw InputError(SourceLocation{"results", 0, 0}, "", name,
                        fmt::format("no such result{}; Session.run() lists them",
-                                   near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+                                   did_you_mean(name, all)));
     }
     units_.push_back(results.info(*id).si_unit);
   }

@@ -109,8 +109,7 @@ double Session::value(const std::string& name) const {
 std::string Session::no_such_result(const std::string& name) const {
   std::vector<std::string> names;
   for (std::size_t i = 0; i < chain_.results().size(); ++i) names.push_back(chain_.results().info(i).name);
-  const std::string near = nearest_match(name, names);
-  return fmt::format("no such result{}", near.empty() ? "" : " (did you mean \"" + near + "\"?)");
+  return fmt::format("no such result{}", did_you_mean(name, names));
 }
 
 CompareInput Session::compare_input(bool solve) {

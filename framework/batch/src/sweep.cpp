@@ -1,5 +1,6 @@
 // `radchain sweep`: a grid of parameter values, the chain's solves re-run at each point, on all cores.
 #include "radchain/batch/sweep.hpp"
+#include "radchain/strings.hpp"
 
 #include "radchain/batch/catalogue.hpp"
 #include "radchain/batch/factored_grid.hpp"
@@ -22,28 +23,12 @@
 
 namespace radchain {
 namespace {
+using strings::split;
+using strings::trimmed;
+using strings::unquoted;
 
-std::string trimmed(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string::npos) return {};
-  return s.substr(first, s.find_last_not_of(" \t") - first + 1);
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1)
-    parts.push_back(text.substr(start, at - start));
-  parts.push_back(text.substr(start));
-  return parts;
-}
 
 using batch_detail::is_numeric;
-
-std::string unquoted(std::string example) {
-  if (example.size() >= 2 && example.front() == '"' && example.back() == '"') example = example.substr(1, example.size() - 2);
-  return example;
-}
 
 std::string column_name(const std::string& name, const std::string& unit) {
   if (unit.empty() || unit == "1") return name;
@@ -206,10 +191,9 @@ Sweep::Sweep(SweepOptions options) : options_(std::move(options)) {
       throw InputError(SourceLocation{"--results", 0, 0}, "", name, "is listed twice (one column per result)");
     const auto id = results.find(name);
     if (!id) {
-      const std::string near = nearest_match(name, all);
       throw InputError(SourceLocation{"--results", 0, 0}, "", name,
                        fmt::format("no such result{}; `radchain run {}` lists them",
-                                   near.empty() ? "" : " (did you mean \"" + near + "\"?)", options_.sensor_file));
+                                   did_you_mean(name, all), options_.sensor_file));
     }
     units_.push_back(results.info(*id).display_unit);
   }

@@ -1,6 +1,7 @@
 // `radchain uncertainty`: Monte Carlo over input distributions, solves re-run at every sample, on all cores; the
 // linear propagation from the budget's derivatives beside it.
 #include "radchain/batch/uncertainty.hpp"
+#include "radchain/strings.hpp"
 
 #include "radchain/batch/budget.hpp"
 #include "radchain/batch/run_batch.hpp"
@@ -19,12 +20,8 @@
 
 namespace radchain {
 namespace {
+using strings::trimmed;
 
-std::string trimmed(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string::npos) return {};
-  return s.substr(first, s.find_last_not_of(" \t") - first + 1);
-}
 
 std::uint64_t splitmix64(std::uint64_t x) {
   x += 0x9e3779b97f4a7c15ULL;

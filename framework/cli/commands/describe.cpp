@@ -169,10 +169,9 @@ int describe(const std::string& name) {
   std::vector<std::string> candidates = names;
   candidates.insert(candidates.end(), kind_names.begin(), kind_names.end());
   candidates.insert(candidates.end(), tables.begin(), tables.end());
-  const std::string near = nearest_match(name, candidates);
   throw InputError({}, "describe", name,
                    fmt::format("unknown plugin, kind, table or command{}; plugins: {}; kinds: {}; tables and commands: {}",
-                               near.empty() ? "" : " (did you mean \"" + near + "\"?)", join(names), join(kind_names),
+                               did_you_mean(name, candidates), join(names), join(kind_names),
                                join(tables)));
 }
 

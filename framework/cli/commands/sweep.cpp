@@ -7,6 +7,7 @@
 #include "radchain/error.hpp"
 #include "radchain/batch/sweep.hpp"
 #include "radchain/batch/thread_pool.hpp"
+#include "radchain/strings.hpp"
 #include "radchain/vocabulary.hpp"
 
 #include <fmt/format.h>
@@ -21,8 +22,8 @@ int sweep(const SweepCommand& command) {
   options.sensor_file = command.sensor.sensor;
   for (const auto& s : command.sensor.sets) {
     Override o = parse_override(s);
-    if (is_sweep_range(unquoted(o.value)))
-      options.axes.emplace_back(o.key, unquoted(o.value));
+    if (is_sweep_range(strings::unquoted(o.value)))
+      options.axes.emplace_back(o.key, strings::unquoted(o.value));
     else
       options.overrides.push_back(o);
   }

@@ -1,6 +1,7 @@
 // Input distributions (radchain/distribution.hpp): their moments and quantiles, and the parser shared by
 // `radchain uncertainty --vary` and the sensor file's [uncertainty] section.
 #include "radchain/distribution.hpp"
+#include "radchain/strings.hpp"
 
 #include "radchain/error.hpp"
 #include "radchain/physics/detection.hpp"
@@ -16,14 +17,10 @@
 
 namespace radchain {
 namespace {
+using strings::trimmed;
+
 
 const double nan = std::numeric_limits<double>::quiet_NaN();
-
-std::string trimmed(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string::npos) return {};
-  return s.substr(first, s.find_last_not_of(" \t") - first + 1);
-}
 
 }  // namespace
 
@@ -188,9 +185,8 @@ VariedInput parse_varied_input(Chain& chain, const std::string& key, const std::
       throw fail(fmt::format("the sensor file has no section \"{}\"; sections: {}", dot == std::string::npos ? key : key.substr(0, dot),
                              join(sections)));
     }
-    const std::string near = nearest_match(key, keys);
     throw fail(fmt::format("{} has no real-valued parameter \"{}\"{}", slot->params->context(), key.substr(dot + 1),
-                           near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+                           did_you_mean(key, keys)));
   }
   const ParamSpec& spec = *entry->spec;
   if (spec.spectral) throw fail(key + " is spectral: vary it with a sweep instead");
@@ -253,9 +249,8 @@ VariedInput parse_varied_input(Chain& chain, const std::string& key, const std::
     else if (name == "lognormal") d.kind = Distribution::Kind::lognormal;
     else if (name == "triangular") d.kind = Distribution::Kind::triangular, arity = 3;
     else {
-      const std::string near = nearest_match(name, {"normal", "uniform", "lognormal", "triangular", "truncated"});
       throw fail(fmt::format("unknown distribution \"{}\"{}: normal, uniform, lognormal, triangular or truncated", name,
-                             near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+                             did_you_mean(name, {"normal", "uniform", "lognormal", "triangular", "truncated"})));
     }
     if (args.size() != arity) throw fail(fmt::format("{} takes {} values, {} given", name, arity, args.size()));
     double values[3] = {0, 0, 0};

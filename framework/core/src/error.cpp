@@ -53,6 +53,11 @@ static std::size_t edit_distance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+std::string did_you_mean(const std::string& given, const std::vector<std::string>& accepted) {
+  const std::string near = nearest_match(given, accepted);
+  return near.empty() ? std::string() : " (did you mean \"" + near + "\"?)";
+}
+
 std::string nearest_match(const std::string& given, const std::vector<std::string>& accepted) {
   std::string best;
   std::size_t best_distance = std::max<std::size_t>(2, given.size() / 3) + 1;

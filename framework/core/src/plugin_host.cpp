@@ -278,10 +278,8 @@ const PluginInfo& PluginHost::load(Kind kind, const std::string& name) {
     if (file.name == name) return load_file_locked(file.path);
     available.push_back(file.name);
   }
-  const std::string near = nearest_match(name, available);
   const std::string hint = other_kind ? fmt::format(" (\"{}\" is {} plugin)", name, with_article(to_string(*other_kind)))
-                           : near.empty() ? ""
-                                          : " (did you mean \"" + near + "\"?)";
+                                      : did_you_mean(name, available);
   // The subject names the plugin; a caller that already shows the name uses problem() alone.
   throw InputError({}, "", fmt::format("plugin \"{}\"", name),
                    fmt::format("unknown {} plugin{}; available: {} (search path: {})", to_string(kind), hint,

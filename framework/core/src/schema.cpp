@@ -242,8 +242,7 @@ void assign_one(Params& params, Params::Entry& entry, const ConfigValue& value, 
       bool ok = false;
       for (const auto& c : spec.choices) ok = ok || c == value.string_value;
       if (!ok) {
-        const std::string near = nearest_match(value.string_value, spec.choices);
-        throw fail(spec.expected_text() + (near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+        throw fail(spec.expected_text() + did_you_mean(value.string_value, spec.choices));
       }
       entry.text = value.string_value;
       break;
@@ -341,9 +340,8 @@ Params validate_section(const Schema& schema, const ConfigValue& table, const Va
       entry.given = true;
     }
     if (!known) {
-      const std::string near = nearest_match(key, accepted);
       throw InputError(value.where, params.context(), key,
-                       fmt::format("unknown key{}; accepted keys: {}", near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+                       fmt::format("unknown key{}; accepted keys: {}", did_you_mean(key, accepted),
                                    accepted.empty() ? "(none)" : join(accepted)));
     }
   }

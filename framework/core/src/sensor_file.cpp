@@ -39,10 +39,9 @@ void apply_override(ConfigValue& root, const Override& o) {
       std::vector<std::string> sections;
       for (const auto& [name, member] : table->members)
         if (member.type == ConfigValue::Type::table) sections.push_back(name);
-      const std::string near = nearest_match(path[i], sections);
       throw InputError(SourceLocation{"--set " + o.key, 0, 0}, "", "",
                        fmt::format("the sensor file has no section \"{}\"{}", path[i],
-                                   near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+                                   did_you_mean(path[i], sections)));
     }
     table = next;
   }
@@ -87,12 +86,10 @@ std::string numeric_parameters_text(Chain& chain, const std::string& qualified_k
       const ParamType type = entry.spec->type;
       if (type == ParamType::quantity || type == ParamType::number || type == ParamType::integer) keys.push_back(entry.spec->key);
     }
-    const std::string near = nearest_match(key, keys);
     return fmt::format("{} has no numeric parameter \"{}\"{}; its numeric parameters: {}", section, key,
-                       near.empty() ? "" : " (did you mean \"" + near + "\"?)", keys.empty() ? "none" : join(keys));
+                       did_you_mean(key, keys), keys.empty() ? "none" : join(keys));
   }
-  const std::string near = nearest_match(section, sections);
-  return fmt::format("no section \"{}\"{}; sections: {}", section, near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+  return fmt::format("no section \"{}\"{}; sections: {}", section, did_you_mean(section, sections),
                      join(sections));
 }
 
@@ -248,9 +245,8 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
     bool known = false;
     for (const auto& k : top_level_keys) known = known || k == key;
     if (!known) {
-      const std::string near = nearest_match(key, top_level_keys);
       throw InputError(value.where, "sensor file", "[" + key + "]",
-                       fmt::format("unknown section{}; accepted: {}", near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+                       fmt::format("unknown section{}; accepted: {}", did_you_mean(key, top_level_keys),
                                    join(top_level_keys)));
     }
   }
@@ -330,9 +326,8 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
       const Params::Entry& criterion = params.entry("criterion");
       for (const std::string& name : criterion.texts) {
         if (std::find(criteria.begin(), criteria.end(), name) == criteria.end()) {
-          const std::string near = nearest_match(name, criteria);
           throw InputError(criterion.where, "[[solve]]", "criterion = " + criterion.as_written,
-                           fmt::format("no such criterion{}; defined: {}", near.empty() ? "" : " (did you mean \"" + near + "\"?)",
+                           fmt::format("no such criterion{}; defined: {}", did_you_mean(name, criteria),
                                        criteria.empty() ? "none" : join(criteria)));
         }
         spec.criteria.push_back(name);
@@ -394,9 +389,8 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
     for (const auto& [name, spec] : expected->members) {
       const auto id = chain.results().find(name);
       if (!id) {  // the entry's name, not a key in it: the results of this chain are the accepted names
-        const std::string near = nearest_match(name, names);
         throw InputError(spec.where, "[expected]", name,
-                         fmt::format("no such result{}; see `radchain run` for the names", near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+                         fmt::format("no such result{}; see `radchain run` for the names", did_you_mean(name, names)));
       }
       const ResultInfo& info = chain.results().info(*id);
       if (spec.type != ConfigValue::Type::table)
@@ -496,10 +490,9 @@ static void read_tables(Chain& chain, const ConfigValue& tables, const std::stri
       const Params::Entry& results = params.entry("results");
       for (const std::string& name : results.texts) {
         if (!chain.results().find(name)) {
-          const std::string near = nearest_match(name, names);
           throw InputError(results.where, "[[table]]", "results = " + results.as_written,
                            fmt::format("no such result \"{}\"{}; see `radchain run` for the names", name,
-                                       near.empty() ? "" : " (did you mean \"" + near + "\"?)"));
+                                       did_you_mean(name, names)));
         }
         table.results.push_back(name);
       }

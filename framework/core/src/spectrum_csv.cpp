@@ -1,4 +1,5 @@
 #include "radchain/spectrum_csv.hpp"
+#include "radchain/strings.hpp"
 
 #include "radchain/error.hpp"
 #include "radchain/input_file.hpp"
@@ -17,22 +18,11 @@
 
 namespace radchain {
 namespace {
+using strings::split;
+using strings::trimmed;
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::string part;
-  std::istringstream in(text);
-  while (std::getline(in, part, separator)) parts.push_back(part);
-  if (!text.empty() && text.back() == separator) parts.emplace_back();
-  return parts;
-}
+constexpr std::string_view blanks = " \t\r";  // a line's blanks (a CRLF file's \r too)
 
-std::string trim(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
-}
 
 bool has_letter(const std::string& token) {
   for (char c : token)
@@ -83,7 +73,7 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
     ++line_number;
     if (line_number > max_rows) throw fail(line_number, fmt::format("more than {} lines", max_rows));
     if (line.size() > max_line) throw fail(line_number, fmt::format("a line of {} characters: at most {}", line.size(), max_line));
-    const std::string text = trim(line);
+    const std::string text = trimmed(line, blanks);
     if (text.empty()) throw fail(line_number, "blank line (the format has none)");
     if (text.front() == '#') {
       if (have_header) throw fail(line_number, "comment after the header line");
@@ -96,7 +86,7 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
     if (!have_header) {
       if (out.provenance.empty())
         throw fail(line_number, "no provenance: the file must start with '#' comment lines saying where the data come from");
-      const std::string wl = trim(fields[0]);
+      const std::string wl = trimmed(fields[0], blanks);
       if (wl.rfind("wavelength_", 0) != 0)
         throw fail(line_number, "no unit header: the first column must be named wavelength_<unit>, e.g. wavelength_nm");
       try {
@@ -104,7 +94,7 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
       } catch (const std::exception&) {
         throw fail(line_number, "wavelength column unit \"" + wl.substr(11) + "\" is not a length");
       }
-      out.value_column = trim(fields[1]);
+      out.value_column = trimmed(fields[1], blanks);
       // Passive optics and a quantum efficiency cannot exceed 1 (a transmittance of 5 would read 1.7 mag deeper).
       for (const char* bounded : {"transmittance", "throughput", "quantum_efficiency"})
         at_most_one = at_most_one || out.value_column.rfind(bounded, 0) == 0;
@@ -128,7 +118,7 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
     double w = 0, v = 0;
     try {
       std::size_t used_w = 0, used_v = 0;
-      const std::string ws = trim(fields[0]), vs = trim(fields[1]);
+      const std::string ws = trimmed(fields[0], blanks), vs = trimmed(fields[1], blanks);
       w = std::stod(ws, &used_w);
       v = std::stod(vs, &used_v);
       if (used_w != ws.size() || used_v != vs.size()) throw std::invalid_argument("trailing");
@@ -140,15 +130,15 @@ SpectrumFile load_spectrum_csv(const std::string& path, const std::string& expec
     if (fields[0].find_first_of("xX") != std::string::npos || fields[1].find_first_of("xX") != std::string::npos)
       throw fail(line_number, "\"" + text + "\" is not two decimal numbers (hexadecimal is not accepted)");
     const int value_column = static_cast<int>(line.find(',')) + 2;  // 1-based, after the comma
-    if (!(w > 0)) throw fail(line_number, "wavelength " + trim(fields[0]) + " is not positive", 1);
+    if (!(w > 0)) throw fail(line_number, "wavelength " + trimmed(fields[0], blanks) + " is not positive", 1);
     // Every spectrum is a non-negative physical quantity (an emission, a response, a transmittance, an absorption
     // coefficient): a negative cell would be integrated as light taken away.
     if (v < 0)
-      throw fail(line_number, "value " + trim(fields[1]) + " is negative: a spectrum, response or transmittance is ≥ 0", value_column);
+      throw fail(line_number, "value " + trimmed(fields[1], blanks) + " is negative: a spectrum, response or transmittance is ≥ 0", value_column);
     if (v > 1 && at_most_one)
-      throw fail(line_number, "value " + trim(fields[1]) + " is above 1: a " + out.value_column + " cannot exceed 1", value_column);
+      throw fail(line_number, "value " + trimmed(fields[1], blanks) + " is above 1: a " + out.value_column + " cannot exceed 1", value_column);
     if (!wavelengths.empty() && !(w * wavelength_factor > wavelengths.back()))
-      throw fail(line_number, "wavelengths must be strictly increasing (" + trim(fields[0]) + " follows a larger or equal one)");
+      throw fail(line_number, "wavelengths must be strictly increasing (" + trimmed(fields[0], blanks) + " follows a larger or equal one)");
     wavelengths.push_back(w * wavelength_factor);
     values.push_back(v * value_factor);
   }

@@ -67,7 +67,10 @@ std::pair<Spectrum, Counting> response(const std::string& curve, const std::stri
 }
 
 Coefficients compute(const std::string& curve, const std::string& reading_of_response, Reading reading) {
-  const auto [r, counting] = response(curve, reading_of_response);
+  // (not a structured binding: clang 14, the fuzz and ASan compiler, cannot capture one in the lambda below)
+  const auto response_and_counting = response(curve, reading_of_response);
+  const Spectrum& r = response_and_counting.first;
+  const Counting counting = response_and_counting.second;
   const Spectrum& lamp = sources().lamp;
   const Spectrum& sun = sources().sun;
   auto k = [&](const Spectrum& s, bool band_numerator, bool band_denominator) {

@@ -40,6 +40,8 @@ class InputError : public std::runtime_error {
 
 // The accepted value closest to `given` (Damerau-free Levenshtein), or "" if nothing is close.
 std::string nearest_match(const std::string& given, const std::vector<std::string>& accepted);
+// Every "did you mean" of a message: ` (did you mean "<nearest>"?)`, or "" if nothing is close.
+std::string did_you_mean(const std::string& given, const std::vector<std::string>& accepted);
 // "a, b, c"
 std::string join(const std::vector<std::string>& items, const std::string& separator = ", ");
 
