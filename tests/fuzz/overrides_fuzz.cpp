@@ -9,6 +9,7 @@
 #include "radchain/error.hpp"
 #include "radchain/batch/shard.hpp"
 #include "radchain/batch/sweep.hpp"
+#include "radchain/strings.hpp"
 
 #include <sstream>
 #include <vector>
@@ -35,8 +36,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       // As `radchain sweep` sorts its --set options (framework/cli/commands/sweep.cpp).
       radchain::Override o = radchain::cli::parse_override(line);
-      if (radchain::is_sweep_range(radchain::cli::unquoted(o.value)))
-        options.axes.emplace_back(o.key, radchain::cli::unquoted(o.value));
+      if (radchain::is_sweep_range(radchain::strings::unquoted(o.value)))
+        options.axes.emplace_back(o.key, radchain::strings::unquoted(o.value));
       else
         options.overrides.push_back(o);
     }
