@@ -509,7 +509,7 @@ class Emva1288 final : public Stage {
                              "noise(L_ref) / (dS/dρ) = noise(L_ref) ρ / S_surface (at the target's sun angle)");
     id_path_electrons_ = c.declare(vocabulary::detector_path_radiance_electrons,
                                    "M b² k L̄_path: the atmosphere's path radiance in the scene's pixel (0 without one)", "e-");
-    // What `render` draws the scene with (framework/imaging/earth_scene.hpp): the ADC, dark, read and fixed-pattern noise.
+    // What `render` draws the scene with (radchain/imaging/earth_scene.hpp): the ADC, dark, read and fixed-pattern noise.
     id_bits_ = c.declare(vocabulary::detector_adc_bits, "input");
     id_dark_rate_ = c.declare(vocabulary::detector_dark_rate, "b² μ_I per (binned) pixel", "e-/s");
     id_read_pixel_ = c.declare(vocabulary::detector_read_noise_per_pixel, "b √(σ_d0² + σ_other²) per (binned) pixel", "e-");

@@ -1,4 +1,4 @@
-// CSV spectra (framework/include/radchain/spectrum_csv.hpp): every file shipped in spectra/ loads with the unit
+// CSV spectra (framework/core/include/radchain/spectrum_csv.hpp): every file shipped in spectra/ loads with the unit
 // its header states, a few reference values (ASTM E-490 solar constant, CIE V(λ) peak, Vega at 5556 Å), and one
 // test per malformed-file rule: each throws InputError naming the file and the offending line.
 #include "radchain/error.hpp"

@@ -1,4 +1,4 @@
-// Spectrum (framework/include/radchain/spectrum.hpp): linear interpolation, the two extrapolation rules, and
+// Spectrum (framework/core/include/radchain/spectrum.hpp): linear interpolation, the two extrapolation rules, and
 // the band integrals, checked against values worked by hand and closed-form integrals of linear functions.
 #include "radchain/constants.hpp"
 #include "radchain/curve_components.hpp"

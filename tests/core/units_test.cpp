@@ -1,4 +1,4 @@
-// Unit strings -> SI factors (framework/include/radchain/units.hpp). References: SI brochure (9th ed.) prefixes,
+// Unit strings -> SI factors (framework/core/include/radchain/units.hpp). References: SI brochure (9th ed.) prefixes,
 // IAU 2012 B2 (1 AU = 149 597 870 700 m exactly), 1 deg = π/180 rad. Exact decimal conversions are held to a
 // few ulp (1e-15 relative); nothing here is a measured value.
 #include "radchain/constants.hpp"

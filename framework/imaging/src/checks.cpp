@@ -1,4 +1,4 @@
-// Closed-loop checks: detection Monte Carlo, slanted-edge MTF, flat-field SNR (render_checks.hpp).
+// Closed-loop checks: detection Monte Carlo, slanted-edge MTF, flat-field SNR (checks.hpp).
 #include "radchain/imaging/checks.hpp"
 
 #include "chain_access.hpp"

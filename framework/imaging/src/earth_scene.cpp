@@ -1,4 +1,4 @@
-// A pushbroom sensor's image of a reflectance map (render_earth.hpp).
+// A pushbroom sensor's image of a reflectance map (earth_scene.hpp).
 #include "radchain/imaging/earth_scene.hpp"
 
 #include "chain_access.hpp"

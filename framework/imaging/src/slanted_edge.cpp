@@ -1,4 +1,4 @@
-// ISO 12233-style slanted-edge MTF (render_checks.hpp).
+// ISO 12233-style slanted-edge MTF (checks.hpp).
 #include "fftw.hpp"
 #include "radchain/imaging/checks.hpp"
 

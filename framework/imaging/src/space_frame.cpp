@@ -1,4 +1,4 @@
-// A point-target sensor's frame (render_space.hpp): the setup from the chain, and the renderer.
+// A point-target sensor's frame (space_frame.hpp): the setup from the chain, and the renderer.
 #include "radchain/imaging/space_frame.hpp"
 
 #include "chain_access.hpp"

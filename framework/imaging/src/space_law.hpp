@@ -1,6 +1,6 @@
 #pragma once
 // The law of one pixel of a point-target frame (private to framework/src/render; the model is in
-// render_space.hpp): used by the renderer and by the closed-loop check's exact prediction.
+// space_frame.hpp): used by the renderer and by the closed-loop check's exact prediction.
 #include "noise_law.hpp"
 #include "radchain/imaging/space_frame.hpp"
 

@@ -1,4 +1,4 @@
-// The project's test scene: bars, edges, low-contrast squares and a sector star (render_earth.hpp).
+// The project's test scene: bars, edges, low-contrast squares and a sector star (earth_scene.hpp).
 #include "radchain/imaging/earth_scene.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// MTF models (framework/physics/mtf.hpp) against independent references: closed forms, a numerical
+// MTF models (radchain/physics/mtf.hpp) against independent references: closed forms, a numerical
 // autocorrelation of the pupil, O'Neill's (1956) closed form for the annulus, Boost bisection and brute-force
 // scans for the roots, and the numbers Kolobrodov 1996 prints (eqs. 11, 12, 15).
 #include "radchain/physics/mtf.hpp"

@@ -1,4 +1,4 @@
-// Pushbroom design relations (framework/physics/pushbroom.hpp) and Kolobrodov 1996's worked example, every
+// Pushbroom design relations (radchain/physics/pushbroom.hpp) and Kolobrodov 1996's worked example, every
 // printed number checked against the paper's own formulas and inputs. Where a printed number does not follow,
 // the test asserts the value that does and says in a comment what was printed (docs/errata-kolobrodov-1996.md).
 #include "radchain/physics/band.hpp"

@@ -8,7 +8,7 @@
 //   Annular pupil (central obscuration ε): amplitude [2J1(v)/v − ε² 2J1(εv)/(εv)]/(1 − ε²), encircled energy
 //       [1 − J0²(v) − J1²(v) + ε²(1 − J0²(εv) − J1²(εv)) − 4ε ∫0^v J1(x) J1(εx)/x dx] / (1 − ε²)
 //     (V. N. Mahajan, Optical Imaging and Aberrations, Part II: Wave Diffraction Optics, SPIE 2001; the cross
-//     term is integrated numerically and tends to ε/2, so the total is 1). tests/framework/physics_psf_test.cpp
+//     term is integrated numerically and tends to ε/2, so the total is 1). tests/core/physics/physics_psf_test.cpp
 //     checks both forms against a brute-force integral of the PSF itself.
 //   Gaussian PSF of standard deviation σ = FWHM / (2 √(2 ln 2)): encircled 1 − exp(−R²/2σ²), ensquared over a
 //     centred square of side a: erf(a / (2√2 σ))² (separable).

@@ -6,7 +6,7 @@
 // Orientation: row 0 is the top row, as in PNG and TIFF. FITS stores rows bottom-up; OpenImageIO's FITS
 // writer and reader flip them, so a FITS viewer (DS9) shows the frame as the PNG does.
 //
-// What OpenImageIO 2.4's FITS writer does with metadata (checked by tests/render/fits_test.cpp): every extra
+// What OpenImageIO 2.4's FITS writer does with metadata (checked by tests/imaging/fits_test.cpp): every extra
 // attribute becomes one card `KEY = value`, the key upper-cased and cut to 8 characters; the value is written
 // verbatim, so text must carry its own quotes and a comment may follow " / ". Integer, float and text
 // attributes are written; double attributes are written empty, and HIERARCH and long text (> 68 characters)
