@@ -222,6 +222,16 @@ class Result(_Mapping):
         return self.text()
 
 
+def _si_values(key, values):
+    """A sweep's values of one parameter as float64 (SI), or TypeError naming the parameter (numpy's own message names
+    neither the parameter nor what it expects)."""
+    try:
+        return _np.asarray(values, dtype=_np.float64)
+    except (TypeError, ValueError) as e:
+        raise TypeError(f"sweep: {key}: values are numbers in SI (an array, a list or a scalar), not {values!r:.60}: "
+                        f"{e}") from None
+
+
 class Session:
     """A sensor loaded once; parameters set, then run, solved, evaluated forward or swept (radchain.load/loads)."""
 
@@ -294,8 +304,12 @@ class Session:
         if not parameters:
             raise ValueError("sweep: give at least one parameter, e.g. {\"optics.aperture\": numpy.linspace(0.15, 0.3, 16)}")
         keys = [_name(k, "a parameter key") for k in parameters]
-        values = [_np.asarray(v, dtype=_np.float64) for v in parameters.values()]
-        shape = _np.broadcast_shapes(*(v.shape for v in values))
+        values = [_si_values(k, v) for k, v in zip(keys, parameters.values())]
+        try:
+            shape = _np.broadcast_shapes(*(v.shape for v in values))
+        except ValueError:
+            raise ValueError("sweep: the parameters' arrays do not broadcast together (numpy rules): shapes " +
+                             ", ".join(f"{k} {v.shape}" for k, v in zip(keys, values))) from None
         # Refused before the broadcast arrays are made (a typo'd shape would allocate gigabytes first).
         _radchain.check_sweep_size(int(_np.prod(shape, dtype=_np.float64)), bool(allow_large))
         arrays = _np.broadcast_arrays(*values)

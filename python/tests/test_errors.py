@@ -92,3 +92,17 @@ def test_describe_unknown_plugin():
     with pytest.raises(radchain.InputError) as caught:
         radchain.describe("telescop")
     assert 'did you mean "telescope"' in str(caught.value)
+
+
+def test_sweep_values_that_are_not_numbers_name_the_parameter(sbv):
+    import numpy as np
+    s = radchain.load(sbv)
+    with pytest.raises(TypeError, match=r"^sweep: optics\.aperture: values are numbers in SI .*'x'"):
+        s.sweep({"optics.aperture": [0.15, "x"]})
+    with pytest.raises(TypeError, match=r"^sweep: detector\.qe: values are numbers in SI"):
+        s.sweep({"optics.aperture": 0.2, "detector.qe": {"a": 1}})
+    with pytest.raises(ValueError, match=r"do not broadcast together.*optics\.aperture \(3,\), detector\.qe \(2,\)"):
+        s.sweep({"optics.aperture": np.linspace(0.15, 0.3, 3), "detector.qe": [0.2, 0.3]})
+    # Numbers as text are numbers (numpy's own conversion), and the point is the one a number gives.
+    assert s.sweep({"optics.aperture": ["0.2"]}, results=["detector.snr"])["detector.snr"][0] == \
+        s.sweep({"optics.aperture": [0.2]}, results=["detector.snr"])["detector.snr"][0]
