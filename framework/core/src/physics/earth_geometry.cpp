@@ -99,8 +99,10 @@ double gsd_across_look_plane_m(double altitude_m, double off_nadir_rad, double a
 
 double ground_distance_between_looks_m(double altitude_m, double roll1_rad, double pitch1_rad, double roll2_rad,
                                        double pitch2_rad, double earth_radius_m) {
-  return arc_between(ground_point(altitude_m, look_direction(roll1_rad, pitch1_rad, 0), earth_radius_m),
-                     ground_point(altitude_m, look_direction(roll2_rad, pitch2_rad, 0), earth_radius_m), earth_radius_m);
+  // In order (a refusal names the first look past the horizon whichever compiler evaluated it).
+  const auto first = ground_point(altitude_m, look_direction(roll1_rad, pitch1_rad, 0), earth_radius_m);
+  const auto second = ground_point(altitude_m, look_direction(roll2_rad, pitch2_rad, 0), earth_radius_m);
+  return arc_between(first, second, earth_radius_m);
 }
 
 double gsd_across_track_m(double altitude_m, double roll_rad, double pitch_rad, double angular_sample_rad,
@@ -115,9 +117,12 @@ double gsd_along_track_m(double altitude_m, double roll_rad, double pitch_rad, d
 }
 
 double swath_m(double altitude_m, double roll_rad, double pitch_rad, double half_field_rad, double earth_radius_m) {
-  return arc_between(ground_point(altitude_m, look_direction(roll_rad, pitch_rad, -half_field_rad), earth_radius_m),
-                     ground_point(altitude_m, look_direction(roll_rad, pitch_rad, half_field_rad), earth_radius_m),
-                     earth_radius_m);
+  // The edge further off nadir first, so that a swath reaching past the horizon is refused naming that edge (two
+  // statements: the order in which a call's arguments are evaluated is unspecified, and GCC and clang differ).
+  const double far = std::abs(roll_rad + half_field_rad) >= std::abs(roll_rad - half_field_rad) ? half_field_rad : -half_field_rad;
+  const auto far_edge = ground_point(altitude_m, look_direction(roll_rad, pitch_rad, far), earth_radius_m);
+  const auto near_edge = ground_point(altitude_m, look_direction(roll_rad, pitch_rad, -far), earth_radius_m);
+  return arc_between(near_edge, far_edge, earth_radius_m);
 }
 
 double half_field_angle_rad(double line_length_m, double focal_length_m) {
