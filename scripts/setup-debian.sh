@@ -24,6 +24,7 @@ packages=(
   python3-distributed python3-dask          # radchain.dask: sweeps and catalogues over a dask cluster (docs/python.md)
   python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib   # examples/notebooks, run by the tests
   clang-14 libclang-rt-14-dev # the clang build and its libFuzzer harnesses (scripts/fuzz-smoke, docs/fuzzing.md)
+  chromium fonts-dejavu-core  # the HTML report checked in a real browser, headless (tests/browser/check_report.py, docs/report.md)
 )
 
 missing=()

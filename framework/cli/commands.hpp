@@ -7,6 +7,7 @@
 #include "options.hpp"
 
 #include <string>
+#include <vector>
 
 namespace radchain::cli {
 
@@ -17,6 +18,19 @@ int sweep(const SweepCommand& options);
 int merge(const MergeCommand& options);
 int plugins();
 int describe(const std::string& name);
+
+// radchain report FILE|DIR... --out DIR [--set k=v] [--no-budget] [--threads N]: a static HTML report (an index of
+// instruments and checks, a page per sensor with its inputs, results, checks and plots) and report.json, written
+// whole or not at all (radchain/batch/html_report.hpp). Exit as the catalogue: 1 a failed check, 2 a bad file.
+struct ReportCommand {
+  std::vector<std::string> inputs;  // sensor files or folders
+  std::string out;                  // --out DIR (required)
+  std::vector<std::string> sets;    // --set, every file
+  bool no_budget = false;           // --no-budget: no sensitivity tornado (the slowest part)
+  std::string solver = "auto";      // --solver
+  std::size_t threads = 0;          // --threads
+};
+int report(const ReportCommand& options);  // commands/report.cpp
 
 // Through the imaging module (imaging_loader.cpp); exit 2 with one line when it cannot be loaded.
 int render(const RenderCommand& options);

@@ -1,4 +1,4 @@
-// radchain: the command-line host. Subcommands: run, catalogue, compare, sweep, merge, budget, uncertainty, mtf,
+// radchain: the command-line host. Subcommands: run, catalogue, report, compare, sweep, merge, budget, uncertainty, mtf,
 // render, validate, plugins, describe. This file only declares the options (CLI11; the shared ones in options.cpp) and dispatches;
 // commands/<name>.cpp run one subcommand each through one library call.
 // Exit codes: 0 ok, 1 a failed check ([expected], a solve, a compare tolerance), 2 bad input (one line on
@@ -119,6 +119,15 @@ int main(int argc, char** argv) {
   cli::add_solver(cat_cmd, catalogue.solver);
   cli::add_batch(cat_cmd, catalogue.batch);
 
+  cli::ReportCommand report;
+  auto* report_cmd = app.add_subcommand("report", "a static HTML report of sensor files: an index of instruments and checks, a page per sensor with plots");
+  report_cmd->add_option("inputs", report.inputs, "sensor files or folders")->required();
+  report_cmd->add_option("--out", report.out, "the report's folder (new, or an earlier report's: replaced whole)")->required();
+  cli::add_sets(report_cmd, report.sets, "override a key in every file: section.key=value (repeatable)");
+  report_cmd->add_flag("--no-budget", report.no_budget, "leave out the sensitivity tornado (the slowest part)");
+  cli::add_solver(report_cmd, report.solver);
+  cli::add_threads(report_cmd, report.threads, "threads to use (default: all cores; same report for any count)");
+
   cli::CompareCommand compare;
   auto* cmp_cmd = app.add_subcommand("compare", "two sensor files or saved JSON results side by side, and their input differences");
   cmp_cmd->add_option("a", compare.a, "sensor file or `radchain run --format json` output")->required();
@@ -214,6 +223,7 @@ int main(int argc, char** argv) {
     PluginHost::instance().configure(plugin_path);
     if (*run_cmd) return dispatch_checked(cli::run(run));
     if (*cat_cmd) return dispatch_checked(cli::catalogue(catalogue));
+    if (*report_cmd) return dispatch_checked(cli::report(report));
     if (*cmp_cmd) return dispatch_checked(cli::compare(compare));
     if (*sweep_cmd) return dispatch_checked(cli::sweep(sweep));
     if (*merge_cmd) return dispatch_checked(cli::merge(merge));
