@@ -1,5 +1,5 @@
 // MTF curves of the Kolobrodov design: end points and the matching condition of eq. (11).
-#include "radchain/imaging/mtf_curves.hpp"
+#include "radchain/mtf_curves.hpp"
 #include "radchain/sensor_file.hpp"
 
 #include <gtest/gtest.h>

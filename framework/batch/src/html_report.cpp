@@ -9,7 +9,7 @@
 #include "radchain/config.hpp"
 #include "radchain/error.hpp"
 #include "radchain/input_file.hpp"
-#include "radchain/physics/mtf.hpp"
+#include "radchain/mtf_curves.hpp"
 #include "radchain/physics/mtf_budget.hpp"
 #include "radchain/report.hpp"
 #include "radchain/vocabulary.hpp"
@@ -438,71 +438,47 @@ std::string criterion_with(const Report& report, const std::string& suffix) {
   return found;
 }
 
-// The MTF the chain designs to. An Earth-observation camera (a giqe criterion): the cascade of
-// physics/mtf_budget.hpp with the parameters the criterion reports, as `radchain mtf` draws it
-// (imaging/src/mtf_curves.cpp reads the same results; the batch library may not call it, and tests/cli/report_test.cpp
-// checks both give the same curves). Kolobrodov's design (an mtf_match criterion): his Fig. 2 curves.
+// The MTF the chain designs to, read from the report as `radchain mtf` reads it (radchain/mtf_curves.hpp): an
+// Earth-observation camera's budget (a giqe criterion), component by component, or Kolobrodov's design (an
+// mtf_match criterion), his Fig. 2 curves.
 std::optional<Figure> mtf_figure(const Report& report, Json& plots) {
-  const std::string giqe = criterion_with(report, ".mtf_nyquist_system");
-  const std::string matched = criterion_with(report, ".required_quality");
-  if (giqe.empty() && matched.empty()) return std::nullopt;
+  const bool budget = has_mtf_budget(report);
+  if (!budget && criterion_with(report, ".required_quality").empty()) return std::nullopt;
   Figure f{"mtf", "MTF budget", "", ""};
-  auto need = [&](const std::string& name) {
-    const auto v = report.value(name);
-    if (!v) throw std::runtime_error("the chain reports no " + name);
-    return *v;
-  };
   svg::LinePlot plot;
   plot.id = "plot-mtf";
   plot.x = {"spatial frequency at the focal plane (cycles/mm)", false, 0, NAN};
   plot.y = {"MTF", false, 0, 1};
   plot.description = "modulation transfer functions";
-  const std::size_t points = 201;
   try {
-    if (!matched.empty() && giqe.empty()) {
-      const double f_number = need(std::string(vocabulary::optics_f_number.name));
-      const double element = need(std::string(vocabulary::detector_element_size_for_mtf.name));
-      const double wavelength = need(vocabulary::criterion_wavelength.in_criterion(matched.substr(9)));
-      const double eta = need(vocabulary::criterion_required_quality.in_criterion(matched.substr(9)));
+    if (!budget) {
+      const MtfCurves c = mtf_curves(report);
+      const std::string matched = criterion_with(report, ".required_quality");
       svg::Series diffraction{"diffraction-limited objective", {}, {}}, objective{"objective, eq. (7): linear model", {}, {}},
           detector{"detector element, eq. (8)", {}, {}}, system{"system, eq. (10)", {}, {}, true};
-      for (std::size_t i = 0; i < points; ++i) {
-        const double nu = (1.0 / element) * static_cast<double>(i) / (points - 1);
-        const double o = physics::kolobrodov_linear_mtf(nu, wavelength, f_number, eta), d = physics::detector_pixel_mtf(nu, element);
-        for (auto* s : {&diffraction, &objective, &detector, &system}) s->x.push_back(nu * 1e-3);
-        diffraction.y.push_back(physics::diffraction_mtf(nu, wavelength, f_number));
-        objective.y.push_back(o);
-        detector.y.push_back(d);
-        system.y.push_back(o * d);  // Kolobrodov 1996 eq. (9): the system MTF is the product
+      for (std::size_t i = 0; i < c.frequency_per_m.size(); ++i) {
+        for (auto* s : {&diffraction, &objective, &detector, &system}) s->x.push_back(c.frequency_per_m[i] * 1e-3);
+        diffraction.y.push_back(c.diffraction[i]);
+        objective.y.push_back(c.objective[i]);
+        detector.y.push_back(c.detector[i]);
+        system.y.push_back(c.system[i]);
       }
       plot.series = {diffraction, objective, detector, system};
       f.title = "MTF (Kolobrodov 1996, Fig. 2)";
       f.caption = fmt::format("The objective at the quality η = {:.3g} the design needs ({}), the detector element V_D = {:.4g} µm "
                               "and their product, at λ = {:.4g} µm and f/{:.3g}; to the element's first zero 1/V_D. The "
                               "same curves as `radchain mtf`.",
-                              eta, matched, element * 1e6, wavelength * 1e6, f_number);
+                              c.eta, matched, c.element_m * 1e6, c.wavelength_m * 1e6, c.f_number);
     } else {
-      physics::MtfBudget b;
-      b.f_number = need(std::string(vocabulary::optics_f_number.name));
-      b.obscuration = report.value(std::string(vocabulary::optics_obscuration.name)).value_or(0.0);
-      b.wavelength_m = need(giqe + ".mtf_wavelength");
-      b.pitch_m = need(giqe + ".sample_pitch");
-      b.jitter_rms_m = need(giqe + ".jitter_rms");
-      b.smear_m = need(giqe + ".smear_length");
-      b.diffusion_rms_m = need(giqe + ".diffusion_rms");
-      b.wavefront_error_waves = need(giqe + ".wavefront_error");
-      b.tdi_stages = need(giqe + ".tdi_stages");
-      b.tdi_mismatch = need(giqe + ".tdi_mismatch");
-      b.focal_length_m = need(std::string(vocabulary::optics_focal_length.name));
-      b.fried_parameter_m = report.value(giqe + ".fried_parameter").value_or(0.0);
-      const double nyquist = physics::nyquist_frequency_per_m(b.pitch_m);
+      const MtfBudgetCurves c = mtf_budget_curves(report);
+      const physics::MtfBudget& b = c.budget;
       const char* names[] = {"diffraction", "pixel", "jitter", "smear", "diffusion", "wavefront", "TDI", "atmosphere"};
       std::vector<svg::Series> components(8);
       svg::Series system{"system", {}, {}, true};
       for (std::size_t k = 0; k < 8; ++k) components[k].label = names[k];
-      for (std::size_t i = 0; i < points; ++i) {
-        const double nu = 2.0 * nyquist * static_cast<double>(i) / (points - 1);
-        const physics::MtfComponents m = physics::mtf_components(b, nu);
+      for (std::size_t i = 0; i < c.frequency_per_m.size(); ++i) {
+        const double nu = c.frequency_per_m[i];
+        const physics::MtfComponents& m = c.components[i];
         const double values[] = {m.diffraction, m.pixel, m.jitter, m.smear, m.diffusion, m.wavefront, m.tdi, m.atmosphere};
         for (std::size_t k = 0; k < 8; ++k) components[k].x.push_back(nu * 1e-3), components[k].y.push_back(values[k]);
         system.x.push_back(nu * 1e-3);
@@ -510,18 +486,19 @@ std::optional<Figure> mtf_figure(const Report& report, Json& plots) {
       }
       // A component equal to 1 at every frequency (no jitter, no TDI …) is named in the caption, not drawn over MTF = 1.
       std::vector<std::string> unity;
-      for (auto& c : components) {
-        const bool flat = std::all_of(c.y.begin(), c.y.end(), [](double v) { return std::abs(v - 1) < 1e-12; });
-        if (flat) unity.push_back(c.label);
-        else plot.series.push_back(std::move(c));
+      for (auto& component : components) {
+        const bool flat = std::all_of(component.y.begin(), component.y.end(), [](double v) { return std::abs(v - 1) < 1e-12; });
+        if (flat) unity.push_back(component.label);
+        else plot.series.push_back(std::move(component));
       }
       plot.series.push_back(std::move(system));
+      const double nyquist = c.nyquist_per_m;
       const physics::MtfComponents at = physics::mtf_components(b, nyquist);
       plot.x_marks.push_back({nyquist * 1e-3, fmt::format("Nyquist {:.4g} /mm: system {:.3f}", nyquist * 1e-3, at.system())});
       f.caption = fmt::format("The MTF budget of {} (physics/mtf_budget.hpp, as `radchain mtf` draws it) from 0 to twice the "
                               "Nyquist frequency 1/(2p), p = {:.4g} µm, at λ = {:.4g} µm and f/{:.3g}; the system is the product "
                               "of the components.{}",
-                              giqe, b.pitch_m * 1e6, b.wavelength_m * 1e6, b.f_number,
+                              c.criterion, b.pitch_m * 1e6, b.wavelength_m * 1e6, b.f_number,
                               unity.empty() ? "" : " Equal to 1 throughout, so not drawn: " + join(unity) + ".");
       plots["mtf_nyquist"] = Json{{"frequency_per_mm", nyquist * 1e-3}, {"system", at.system()}};
     }

@@ -6,7 +6,7 @@
 
 #include "radchain/atomic_file.hpp"
 #include "radchain/error.hpp"
-#include "radchain/imaging/mtf_curves.hpp"
+#include "radchain/mtf_curves.hpp"
 #include "radchain/vocabulary.hpp"
 
 #include <fmt/format.h>

@@ -3,7 +3,7 @@
 
 #include "chain_access.hpp"
 #include "fftw.hpp"
-#include "radchain/imaging/mtf_curves.hpp"
+#include "radchain/mtf_curves.hpp"
 #include "radchain/physics/mtf.hpp"
 #include "random.hpp"
 

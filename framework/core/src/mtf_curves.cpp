@@ -1,4 +1,4 @@
-#include "radchain/imaging/mtf_curves.hpp"
+#include "radchain/mtf_curves.hpp"
 
 #include "radchain/error.hpp"
 #include "radchain/physics/mtf.hpp"
