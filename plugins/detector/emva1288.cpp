@@ -434,7 +434,7 @@ class Emva1288 final : public Stage {
     a.set(id_background_, pixels * sky_binned);
     a.set(id_shot_noise_, std::sqrt(signal));
     a.set(id_prnu_noise_, prnu_amp);
-    a.set(id_ab_zero_, ab_electrons_per_m2_s_);
+    a.set(id_ab_zero_, ab_electrons_per_m2_s_ * qe);  // the scalar η multiplies any qe_curve, as for the target
     if (band_magnitude_) a.set(*id_zero_point_, a.value(*band_magnitude_) + 2.5 * std::log10(image1 / (tdi * t)));
   }
 

@@ -470,3 +470,23 @@ TEST(Emva1288Chain, RubinGeoStreakExample) {
 }
 
 }  // namespace
+
+namespace radchain {
+namespace {
+
+// The AB zero point "through the band and QE" includes the scalar qe, which multiplies any qe_curve as it does the
+// target's electrons: halving qe halves both, and the AB magnitude of the target (−2.5 lg(S / (A t ZP_AB))) is
+// unchanged.
+TEST(Emva1288Chain, AbZeroPointIncludesTheScalarQe) {
+  const std::string rubin = std::string(RADCHAIN_SOURCE_DIR) + "/sensors/rubin-lsst-r-m5.toml";
+  Chain full = load_sensor(rubin, {}, Solving::forward_only);
+  Chain half = load_sensor(rubin, {{"detector.qe", "0.5"}}, Solving::forward_only);
+  const Report a = full.run(), b = half.run();
+  const double ab_full = a.value("detector.ab_zero_point_electron_rate").value();
+  const double ab_half = b.value("detector.ab_zero_point_electron_rate").value();
+  EXPECT_NEAR(ab_half / ab_full, 0.5, 1e-15);
+  EXPECT_NEAR(b.value("detector.image_electrons").value() / a.value("detector.image_electrons").value(), 0.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace radchain
