@@ -49,8 +49,6 @@ class PointEngine {
   void evaluate_group(const std::vector<Lanes>& values, std::size_t count, Output out, char* ok);
   const std::string& failure(std::size_t k) const { return failures_[k]; }
 
-  bool uses_lanes() const { return lanes_; }
-  std::size_t parameters() const { return parameters_.size(); }
   Chain& chain() { return chain_; }
   const Chain& chain() const { return chain_; }
 
