@@ -76,13 +76,13 @@ void add_render_options(CLI::App* cmd, cli::RenderCommand& render) {
   cmd->add_option("--target", render.targets, "\"x,y,mag\", \"mag\" or \"limit\" (repeatable; default: one at the limit)");
   cli::add_seed(cmd, render.seed);
   cmd->add_option("--star-seed", render.star_seed, "seed of the star field");
-  cli::add_schema_options(cmd, cli::render_option_schema(), render.values);
+  cli::add_schema_options(cmd, render_option_schema(), render.values);
 }
 
 void add_validate_options(CLI::App* cmd, cli::ValidateCommand& validate) {
   cli::add_sensor(cmd, validate.sensor);
   cli::add_seed(cmd, validate.seed);
-  cli::add_schema_options(cmd, cli::validate_option_schema(), validate.values);
+  cli::add_schema_options(cmd, validate_option_schema(), validate.values);
 }
 
 }  // namespace

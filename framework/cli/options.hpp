@@ -109,7 +109,7 @@ struct MtfCommand {
 // radchain render SENSOR [options]: a point-target sensor (ccd_frame) renders a detector frame, a pushbroom
 // sensor (ccd_line) an Earth scene. Writes the data as FITS/TIFF/EXR (--out) and/or a display-stretched
 // preview (--png/--preview .png/.tif); prints what it rendered. The values with units, limits or fixed choices
-// are in `values`, checked against render_option_schema() (option_schema.hpp).
+// are in `values`, checked against render_option_schema() (radchain/command_options.hpp).
 struct RenderCommand {
   SensorArgs sensor;
   std::string out;                  // --out frame.fits | frame.tif | frame.exr

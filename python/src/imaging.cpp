@@ -1,10 +1,9 @@
 // radchain._imaging: what radchain.render() calls (docs/python.md). A module of its own, imported on the first
 // render, so that `import radchain` does not load OpenImageIO and FFTW (the command line keeps them in a module
 // loaded by render/validate/mtf only, for the same reason: docs/startup.md). The pixels come from the function the
-// command uses (render_image.hpp): the same request gives the same image as `radchain render … --out x.fits`.
-#include "commands/render_image.hpp"
-#include "option_schema.hpp"
-
+// command uses (radchain/imaging/render_request.hpp): the same request gives the same image as `radchain render …`.
+#include "radchain/command_options.hpp"
+#include "radchain/imaging/render_request.hpp"
 #include "radchain/sensor_file.hpp"
 
 #include <pybind11/numpy.h>
@@ -30,21 +29,21 @@ py::list header_list(const render::Header& header) {
 py::tuple render_file(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
                       const std::vector<std::pair<std::string, std::string>>& options, const std::vector<std::string>& targets,
                       const std::string& scene, std::uint64_t seed, std::uint64_t star_seed) {
-  cli::RenderedImage r;
+  render::RenderedImage r;
   {
     py::gil_scoped_release release;
-    cli::OptionValues values;
+    OptionValues values;
     for (const auto& [key, text] : options) values.given.emplace_back("--" + key, text);
-    const Params validated = cli::validated_options(cli::render_option_schema(), values, "radchain.render");
+    const Params validated = validated_options(render_option_schema(), values, "radchain.render");
     std::vector<Override> overrides;
     for (const auto& [key, text] : sets) overrides.push_back(Override{key, text});  // as radchain.load(set=…)
     Chain chain = load_sensor(path, overrides);
     const Report report = chain.run();
-    r = cli::render_image(chain, report, validated, cli::RenderRequest{targets, scene, seed, star_seed});
+    r = render::render_image(chain, report, render::RenderRequest{validated, targets, scene, seed, star_seed});
   }
   py::array_t<float> pixels({r.image.height, r.image.width});
   std::copy(r.image.pixels.begin(), r.image.pixels.end(), pixels.mutable_data());
-  return py::make_tuple(pixels, header_list(r.header), r.summary, r.point_targets ? "frame" : "scene");
+  return py::make_tuple(pixels, header_list(r.header), r.summary, r.kind == render::SensorImage::point_frame ? "frame" : "scene");
 }
 
 }  // namespace

@@ -2,11 +2,11 @@
 // Everything here is a thin binding of radchain::core and radchain::batch: a Session owns one Chain built from a
 // sensor file (or its text) with overrides, exactly as `radchain run --set` builds it; sweeps go through
 // PointsEvaluator (radchain/batch/points.hpp) with the GIL released, on all cores.
-#include "option_schema.hpp"  // framework/cli: the render and validate options (describe)
 #include "radchain/batch/budget.hpp"
 #include "radchain/batch/catalogue.hpp"
 #include "radchain/batch/uncertainty.hpp"
 #include "radchain/batch/compare.hpp"
+#include "radchain/batch/describe.hpp"
 #include "radchain/batch/points.hpp"
 #include "radchain/batch/session.hpp"
 #include "radchain/batch/shard.hpp"
@@ -45,6 +45,7 @@
 #include <vector>
 
 namespace py = pybind11;
+using namespace pybind11::literals;
 
 namespace radchain::python {
 namespace {
@@ -218,125 +219,47 @@ std::vector<Override> to_overrides(const std::vector<std::pair<std::string, std:
   return o;
 }
 
-// --- describe ------------------------------------------------------------------------------------------------------
+// --- describe: the library's model (radchain/batch/describe.hpp) as dicts ----------------------------------------
 
-std::string type_name(const ParamSpec& p) {
-  switch (p.type) {
-    case ParamType::quantity: return "quantity";
-    case ParamType::number: return "number";
-    case ParamType::integer: return "integer";
-    case ParamType::text: return "string";
-    case ParamType::choice: return "choice";
-    case ParamType::flag: return "boolean";
-    case ParamType::spectrum: return "spectrum";
-  }
-  return "?";
-}
-
-py::list keys_of(const Schema& schema) {
-  py::list keys;
-  for (const auto& p : schema) {
-    py::dict k;
-    k["key"] = p.key;
-    k["type"] = type_name(p);
-    k["si_unit"] = (p.type == ParamType::quantity || p.type == ParamType::spectrum) ? p.si_unit : std::string();
-    k["shape"] = p.shape == ParamShape::list ? "list" : p.shape == ParamShape::pair ? "pair" : "scalar";
-    k["required"] = p.required;
-    k["default"] = p.default_value ? py::object(py::str(*p.default_value)) : py::object(py::none());
-    k["example"] = p.example;
-    k["doc"] = p.doc;
-    k["accepted"] = p.range_text();
-    k["spectral"] = p.spectral;
-    keys.append(k);
-  }
-  return keys;
-}
-
-py::list terms_of(const std::vector<Term>& terms) {
-  py::list out;
-  for (const Term& t : terms) {
-    py::dict d;
-    d["name"] = t.per_criterion() ? t.in_criterion("<name>") : std::string(t.name);
-    d["unit"] = std::string(t.unit);
-    d["meaning"] = std::string(t.meaning);
-    out.append(d);
+py::dict describe_as_dict(const std::string& name) {
+  const Description d = radchain::describe(name);
+  auto keys = [](const std::vector<KeyDescription>& list) {
+    py::list out;
+    for (const KeyDescription& k : list)
+      out.append(py::dict("key"_a = k.key, "type"_a = k.type, "si_unit"_a = k.si_unit, "shape"_a = k.shape,
+                          "required"_a = k.required, "default"_a = k.default_value, "example"_a = k.example, "doc"_a = k.doc,
+                          "accepted"_a = k.accepted, "formerly"_a = k.formerly, "spectral"_a = k.spectral));
+    return out;
+  };
+  auto terms = [](const std::vector<TermDescription>& list, bool with_optional) {
+    py::list out;
+    for (const TermDescription& t : list) {
+      py::dict term("name"_a = t.name, "unit"_a = t.unit, "meaning"_a = t.meaning);
+      if (with_optional) term["optional"] = t.optional;
+      out.append(term);
+    }
+    return out;
+  };
+  py::dict out("what"_a = to_string(d.what), "name"_a = d.name, "title"_a = d.title);
+  switch (d.what) {
+    case Description::What::plugin:
+      out["kind"] = d.kind, out["summary"] = d.summary, out["reference"] = d.reference, out["file"] = d.file;
+      out["framework_version"] = d.framework_version, out["abi_version"] = d.abi_version;
+      out["keys"] = keys(d.keys), out["publishes"] = terms(d.publishes, false), out["needs"] = terms(d.needs, true);
+      out["example"] = d.example;
+      break;
+    case Description::What::kind: {
+      py::list plugins;
+      for (const PluginSummary& p : d.plugins) plugins.append(py::dict("name"_a = p.name, "summary"_a = p.summary, "file"_a = p.file));
+      out["section"] = d.section, out["plugins"] = plugins;
+      break;
+    }
+    case Description::What::table:
+    case Description::What::command:
+      out["keys"] = keys(d.keys), out["example"] = d.example;
+      break;
   }
   return out;
-}
-
-py::dict describe_plugin(const PluginInfo& info, const std::string& path) {
-  py::dict d;
-  d["what"] = "plugin";
-  d["name"] = std::string(info.name);
-  d["kind"] = std::string(to_string(info.kind));
-  d["summary"] = std::string(info.summary);
-  d["reference"] = std::string(info.reference);
-  d["file"] = path;
-  d["framework_version"] = std::string(info.framework_version);
-  d["abi_version"] = info.abi_version;
-  d["keys"] = keys_of(info.schema());
-  d["publishes"] = terms_of(info.publishes);
-  std::vector<Term> needs;
-  py::list optional;
-  for (const Need& n : info.needs) needs.push_back(n.term), optional.append(n.optional);
-  py::list need_list = terms_of(needs);
-  for (std::size_t i = 0; i < needs.size(); ++i) need_list[i]["optional"] = optional[i];
-  d["needs"] = need_list;
-  return d;
-}
-
-std::optional<Kind> kind_named(const std::string& name) {
-  if (auto kind = kind_from_name(name)) return kind;
-  for (const KindInfo& k : kinds)
-    if (k.section == name) return k.kind;
-  return std::nullopt;
-}
-
-py::dict describe(const std::string& name) {
-  py::dict d;
-  if (name == "sensor" || name == "solve" || name == "expected") {
-    d["what"] = "table";
-    d["name"] = name;
-    d["keys"] = keys_of(name == "sensor" ? sensor_table_schema() : name == "solve" ? solve_entry_schema() : expected_entry_schema());
-    return d;
-  }
-  if (name == "render" || name == "validate") {  // the imaging commands' options (radchain.render takes render's)
-    d["what"] = "command";
-    d["name"] = name;
-    d["keys"] = keys_of(name == "render" ? cli::render_option_schema() : cli::validate_option_schema());
-    return d;
-  }
-  if (auto kind = kind_named(name)) {
-    d["what"] = "kind";
-    d["name"] = std::string(to_string(*kind));
-    py::list plugins;
-    for (const auto& f : PluginHost::instance().discover())
-      if (f.kind == *kind) {
-        const PluginInfo& info = PluginHost::instance().load_file(f.path);
-        py::dict p;
-        p["name"] = std::string(info.name);
-        p["summary"] = std::string(info.summary);
-        p["file"] = f.path;
-        plugins.append(p);
-      }
-    d["plugins"] = plugins;
-    return d;
-  }
-  if (name.find('/') != std::string::npos) return describe_plugin(PluginHost::instance().load_file(name), name);
-  std::vector<std::string> names;
-  for (const auto& f : PluginHost::instance().discover()) {
-    if (f.name == name) return describe_plugin(PluginHost::instance().load_file(f.path), f.path);
-    names.push_back(f.name);
-  }
-  std::vector<std::string> candidates = names;
-  std::vector<std::string> kind_names;
-  for (const KindInfo& k : kinds) kind_names.emplace_back(k.name);
-  candidates.insert(candidates.end(), kind_names.begin(), kind_names.end());
-  for (const char* t : {"sensor", "solve", "expected", "render", "validate"}) candidates.emplace_back(t);
-  throw InputError({}, "describe", name,
-                   "unknown plugin, kind or table" + did_you_mean(name, candidates) +
-                       "; plugins: " + join(names) + "; kinds: " + join(kind_names) + "; tables: sensor, solve, expected; "
-                       "commands: render, validate");
 }
 
 py::list plugins() {
@@ -858,7 +781,7 @@ PYBIND11_MODULE(_radchain, m) {
     py::gil_scoped_release release;
     return std::make_unique<PySession>(name, text, to_overrides(sets));
   });
-  m.def("describe", &describe);
+  m.def("describe", &describe_as_dict);
   m.def("plugins", &plugins);
   m.def("configure", &configure, py::arg("plugin_path") = std::vector<std::string>{});
   m.def("search_path", [] { return PluginHost::instance().search_path(); });

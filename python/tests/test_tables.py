@@ -28,6 +28,22 @@ def test_describe_kind_and_tables(cli):
     assert [k["key"] for k in solve["keys"]] == ["unknown", "criterion", "bracket"]
 
 
+@pytest.mark.parametrize("name", ["sensor", "solve", "expected", "table", "render", "validate", "criterion", "telescope"])
+def test_describe_is_the_cli_model(cli, name):
+    """Python and the command line show one describe model: the same title, keys and example for every table,
+    command, kind and plugin (Python once lacked `table`)."""
+    d = radchain.describe(name)
+    text = cli("describe", name).stdout
+    first = text.splitlines()[0]
+    assert first == d["title"] or first == d["title"] + ":"
+    if "keys" in d:
+        keys_text = text.split("keys:\n")[-1].split("options:\n")[-1].split("\npublishes:")[0].split("\nexample:")[0]
+        listed = re.findall(r"^  (-{0,2}\w[\w-]*)\s", keys_text, re.M)
+        assert [k["key"] for k in d["keys"]] == listed
+    if d.get("example"):
+        assert text.endswith(d["example"])
+
+
 def test_describe_render_and_validate_list_the_cli_options(cli):
     for command in ("render", "validate"):
         d = radchain.describe(command)

@@ -5,8 +5,10 @@
 #   batch     includes no radchain/imaging header and no OpenImageIO / FFTW; its library loads neither;
 #   imaging   includes no radchain/batch header and no TBB; its library links neither (OpenImageIO loads TBB);
 #   plugins   include only core headers and link only radchain-core (and load no TBB / OpenImageIO / FFTW).
-#   python    (the module, python/) uses core and batch: no radchain/imaging header, no TBB / OpenImageIO / FFTW /
-#             CLI11 include, and the built module (when RADCHAIN_PYTHON) loads no imaging, OpenImageIO or FFTW.
+#   python    binds the libraries, never the command line's code: nothing under python/ includes a framework/cli
+#             header or links a CLI target; radchain._radchain (module.cpp) uses core and batch (no radchain/imaging
+#             header, no TBB / OpenImageIO / FFTW / CLI11 include, and the built module loads no imaging, OpenImageIO
+#             or FFTW); radchain._imaging (imaging.cpp, imported by radchain.render) binds core and imaging.
 # Usage: check_layers.sh SOURCE_DIR BINARY_DIR. Prints one line per broken rule; exit 1 if any.
 set -uo pipefail
 src=$1 bin=$2
@@ -29,8 +31,12 @@ forbid_includes framework/imaging 'radchain/batch/' "imaging must not include ba
 forbid_includes framework/imaging 'tbb/|oneapi/' "imaging must not use TBB"
 forbid_includes plugins 'radchain/batch/|radchain/imaging/' "plugins use the core SDK only"
 forbid_includes plugins 'tbb/|oneapi/|OpenImageIO/|fftw3|CLI/' "plugins use the core SDK only"
-forbid_includes python 'radchain/imaging/' "the Python module uses core and batch, never imaging"
-forbid_includes python 'tbb/|oneapi/|OpenImageIO/|fftw3|CLI/' "the Python module uses core and batch only"
+forbid_includes python/src/module.cpp 'radchain/imaging/' "radchain._radchain uses core and batch, never imaging"
+forbid_includes python 'tbb/|oneapi/|OpenImageIO/|fftw3|CLI/' "the Python modules bind radchain's libraries only"
+forbid_includes python '(\.\./)*(commands/|options\.hpp|option_schema\.hpp|overrides\.hpp|plot\.hpp|common\.hpp|terminal\.hpp)' \
+  "the Python modules bind the libraries, not the command line's code"
+cli_use=$(grep -nE 'framework/cli|radchain_cli|radchain_render_support|radchain_imaging_commands' "$src/python/CMakeLists.txt" 2>/dev/null)
+[ -z "$cli_use" ] || fail "python/CMakeLists.txt: $(echo "$cli_use" | head -1): the Python modules link no command-line code"
 
 # forbid_loads LIBRARY PATTERN WHAT: ldd of LIBRARY (everything it loads) shows nothing matching PATTERN.
 forbid_loads() {

@@ -1,5 +1,5 @@
 // `radchain render` / `validate` through the CLI: files written, exit codes, and the options checked against their
-// schema (option_schema.hpp) with one located line each (the rendering itself is tested in tests/imaging).
+// schema (radchain/command_options.hpp) with one located line each (the rendering itself is tested in tests/imaging).
 #include "cli_helpers.hpp"
 
 #include <gtest/gtest.h>

@@ -442,8 +442,9 @@ std::string criterion_with(const Report& report, const std::string& suffix) {
 // Earth-observation camera's budget (a giqe criterion), component by component, or Kolobrodov's design (an
 // mtf_match criterion), his Fig. 2 curves.
 std::optional<Figure> mtf_figure(const Report& report, Json& plots) {
-  const bool budget = has_mtf_budget(report);
-  if (!budget && criterion_with(report, ".required_quality").empty()) return std::nullopt;
+  const MtfView view = mtf_view(report);
+  if (view == MtfView::none) return std::nullopt;
+  const bool budget = view == MtfView::budget;
   Figure f{"mtf", "MTF budget", "", ""};
   svg::LinePlot plot;
   plot.id = "plot-mtf";

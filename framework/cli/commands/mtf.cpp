@@ -7,7 +7,6 @@
 #include "radchain/atomic_file.hpp"
 #include "radchain/error.hpp"
 #include "radchain/mtf_curves.hpp"
-#include "radchain/vocabulary.hpp"
 
 #include <fmt/format.h>
 
@@ -61,10 +60,7 @@ int budget_command(const MtfCommand& options, const Report& report) {
 int mtf_command(const MtfCommand& options) {
   Chain chain = load_sensor_of(options.sensor);
   const Report report = chain.run();
-  // Kolobrodov's design (an mtf_match criterion) keeps its Fig. 2 curves; otherwise the camera's MTF budget.
-  bool kolobrodov_design = false;
-  for (const auto& r : report.results) kolobrodov_design = kolobrodov_design || vocabulary::criterion_required_quality.matches(r.name);
-  if (!kolobrodov_design && has_mtf_budget(report)) return budget_command(options, report);
+  if (mtf_view(report) == MtfView::budget) return budget_command(options, report);
   const MtfCurves curves = mtf_curves(report);
   write_csv(options, mtf_curves_csv(curves));
   if (!options.plot.empty()) {

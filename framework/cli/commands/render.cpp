@@ -1,10 +1,10 @@
 // `radchain render` (in the imaging module): a detector frame (point targets) or an Earth scene (pushbroom),
-// drawn by render_image() and written as FITS/TIFF/EXR and a preview.
+// drawn by render_image() (radchain/imaging/render_request.hpp) and written as FITS/TIFF/EXR and a preview.
 #include "imaging_common.hpp"
-#include "render_image.hpp"
 #include "../overrides.hpp"
 
 #include "radchain/imaging/render.hpp"
+#include "radchain/imaging/render_request.hpp"
 
 #include <fmt/format.h>
 
@@ -22,19 +22,9 @@ FitsPixel fits_type_of(const std::string& name, const Image& image) {
   return fits_pixel_for(image);  // auto
 }
 
-PreviewOptions preview_of(const Params& v, bool space) {
-  PreviewOptions p;
-  if (!space) {  // a scene: linear between the 0.5 % and 99.5 % points
-    p.stretch = Stretch::linear;
-    p.low_percentile = 0.5;
-    p.high_percentile = 99.5;
-  }
-  if (v.has("--stretch")) p.stretch = v.text("--stretch") == "linear" ? Stretch::linear : Stretch::asinh;
-  p.upscale = static_cast<int>(v.integer("--upscale"));
-  return p;
-}
-
-void write_outputs(const RenderCommand& c, const Params& v, const Image& image, const Header& header, bool space) {
+void write_outputs(const RenderCommand& c, const Params& v, const RenderedImage& r) {
+  const Image& image = r.image;
+  const Header& header = r.header;
   if (!c.out.empty()) {
     const std::string extension = std::filesystem::path(c.out).extension().string();
     if (extension == ".fits" || extension == ".fit" || extension == ".fts") {
@@ -48,7 +38,7 @@ void write_outputs(const RenderCommand& c, const Params& v, const Image& image, 
     }
   }
   if (!c.preview.empty()) {
-    write_preview(c.preview, image, preview_of(v, space));
+    write_preview(c.preview, image, preview_options(v, r.kind));
     fmt::print("wrote {} (preview)\n", c.preview);
   }
   if (c.out.empty() && c.preview.empty()) fmt::print("nothing written: give --out frame.fits and/or --preview frame.png\n");
@@ -62,9 +52,9 @@ int render_command(const RenderCommand& c) {
   const Report report = chain.run();
   if (!report.all_passed())
     fmt::print(stderr, "radchain render: {}: a solve or an [expected] check failed (rendering anyway)\n", c.sensor.sensor);
-  const RenderedImage r = render_image(chain, report, values, RenderRequest{c.targets, c.scene, c.seed, c.star_seed});
+  const RenderedImage r = render_image(chain, report, RenderRequest{values, c.targets, c.scene, c.seed, c.star_seed});
   for (const auto& line : r.summary) fmt::print("{}\n", line);
-  write_outputs(c, values, r.image, r.header, r.point_targets);
+  write_outputs(c, values, r);
   return 0;
 }
 

@@ -3,7 +3,7 @@
 #include "../overrides.hpp"
 
 #include "radchain/imaging/render.hpp"
-#include "radchain/vocabulary.hpp"
+#include "radchain/imaging/render_request.hpp"
 
 #include <fmt/format.h>
 
@@ -20,21 +20,13 @@ int validate_command(const ValidateCommand& c) {
   const int size = static_cast<int>(v.integer("--size"));
   Chain chain = load_sensor_of(c.sensor);
   const Report report = chain.run();
+  const SensorView view = sensor_view(chain, report);
   bool ok = true;
-  // A point-target frame without a pedestal whose dark level lies within 3σ of the ADC's lowest step (−½ DN):
-  // its noise is clipped at 0 DN, which none of the laws model. From the report: dark + sky per pixel, read noise, K.
-  bool clipped = false;
-  // The frame options every point-target check starts from (geometry options, the pedestal), and the clipping test.
+  // The frame options every point-target check starts from: the geometry options and the pedestal.
   auto point_frame = [&] {
     SpaceFrameOptions frame;
     apply_frame_geometry(frame, v);
     frame.offset_dn = v.get("--offset");
-    auto value = [&](const Term& term) { return report.value(std::string(term.name)).value_or(0.0); };
-    const double level = value(vocabulary::detector_dark_rate) * value(vocabulary::detector_integration_time) +
-                         value(vocabulary::detector_sky_electrons_per_pixel);
-    const double read = value(vocabulary::detector_read_noise_per_pixel), gain = value(vocabulary::detector_system_gain);
-    const double half_step = gain > 0 ? 0.5 / gain : 0.0;
-    clipped = frame.offset_dn == 0 && level + half_step < 3.0 * std::sqrt(level + read * read);
     return frame;
   };
   auto matched_filter_options = [&] {
@@ -53,7 +45,7 @@ int validate_command(const ValidateCommand& c) {
                verdict(flat.passed(max_z)), flat.measured_snr, flat.snr_sigma, flat.predicted_snr, flat.chain_snr,
                flat.measured_noise, flat.predicted_noise);
   };
-  if (is_point_target_sensor(chain) && report.value(std::string(vocabulary::detector_target_streak_pixels.name)).value_or(0.0) > 0) {
+  if (view.image == SensorImage::point_frame && view.point_check == PointCheck::streak) {
     // A moving target: PSF-weighted photometry along its streak (a square detection window does not apply).
     const StreakCheck check = check_streak(chain, report, point_frame(), matched_filter_options());
     fmt::print("{}: streak of {:.4g} pixels at the limiting magnitude {:.4f} (S = {:.4g} e-, n_eff {:.4g} px, still {:.4g} px; "
@@ -67,7 +59,7 @@ int validate_command(const ValidateCommand& c) {
                "loss at constant SNR (background-limited) {:.4f}\n",
                verdict(std::abs(check.measured_snr_loss() - check.predicted_snr_loss()) <= max_z * check.snr_loss_sigma()),
                check.measured_snr_loss(), check.snr_loss_sigma(), check.predicted_snr_loss(), check.chain_trailing_loss);
-  } else if (is_point_target_sensor(chain) && psf_weighted_photometry(report)) {
+  } else if (view.image == SensorImage::point_frame && view.point_check == PointCheck::psf_photometry) {
     // PSF-weighted photometry of a still target: the matched filter, not a square window.
     const SpaceFrameOptions frame = point_frame();
     const PsfPhotometryCheck check = check_psf_photometry(chain, report, frame, matched_filter_options());
@@ -88,7 +80,7 @@ int validate_command(const ValidateCommand& c) {
                  100 * (check.chain_form_snr / check.chain_snr - 1), 100 * check.tolerance,
                  100 * (check.still.predicted / check.chain_form_snr - 1));
     space_flat_field(frame);
-  } else if (is_point_target_sensor(chain)) {
+  } else if (view.image == SensorImage::point_frame) {
     const SpaceFrameOptions frame = point_frame();
     DetectionCheckOptions d;
     d.trials = v.integer("--trials");
@@ -119,7 +111,7 @@ int validate_command(const ValidateCommand& c) {
                verdict(flat.passed(max_z)), flat.measured_label, flat.measured_snr, flat.snr_sigma, flat.predicted_snr,
                flat.chain_snr, flat.measured_noise, flat.predicted_noise, flat.noise_unit);
   }
-  if (!ok && clipped)
+  if (!ok && view.image == SensorImage::point_frame && view.clipped_at_zero(v.get("--offset")))
     fmt::print("  note: the rendered frames have no ADC pedestal (--offset 0) and their dark level is within 3σ of 0 DN: "
                "noise below 0 DN is clipped, which the laws above do not model and which may contribute; rerun with "
                "--offset (e.g. 100)\n");

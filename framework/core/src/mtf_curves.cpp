@@ -62,6 +62,12 @@ std::string budget_criterion(const Report& report) {
 
 bool has_mtf_budget(const Report& report) { return !budget_criterion(report).empty(); }
 
+MtfView mtf_view(const Report& report) {
+  for (const auto& r : report.results)
+    if (vocabulary::criterion_required_quality.matches(r.name)) return MtfView::design_curves;
+  return has_mtf_budget(report) ? MtfView::budget : MtfView::none;
+}
+
 physics::MtfBudget mtf_budget(const Report& report, std::string* criterion_name) {
   const std::string criterion = budget_criterion(report);
   auto need = [&](const std::string& name) {

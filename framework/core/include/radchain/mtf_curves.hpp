@@ -34,6 +34,11 @@ struct MtfBudgetCurves {
 };
 // Whether the report has a budget (a giqe criterion), and the curves; mtf_budget_curves throws InputError if not.
 bool has_mtf_budget(const Report& report);
+
+// Which MTF curves a sensor is shown with (`radchain mtf`, the HTML report): Kolobrodov's design curves for a chain
+// that designs to a required MTF (an mtf_match criterion), else the camera's budget (a giqe criterion), else none.
+enum class MtfView { design_curves, budget, none };
+MtfView mtf_view(const Report& report);
 // The budget's parameters as the report states them (criterion name in `criterion`); throws InputError if none.
 physics::MtfBudget mtf_budget(const Report& report, std::string* criterion = nullptr);
 MtfBudgetCurves mtf_budget_curves(const Report& report, int points = 201);

@@ -1,11 +1,11 @@
-// The image of `radchain render` as data (render_image.hpp): the options of render_option_schema() into the
-// renderer's options, the frame or scene drawn, its FITS header and the summary lines.
-#include "render_image.hpp"
-
-#include "imaging_common.hpp"
+// Which image a sensor gives and the image of one request (render_request.hpp): the render options into the
+// renderer's, the frame or scene drawn, its FITS header and the summary lines.
+#include "radchain/imaging/render_request.hpp"
 
 #include "radchain/error.hpp"
-#include "radchain/imaging/render.hpp"
+#include "radchain/imaging/checks.hpp"
+#include "radchain/imaging/earth_scene.hpp"
+#include "radchain/vocabulary.hpp"
 
 #include <fmt/format.h>
 
@@ -13,10 +13,25 @@
 #include <cmath>
 #include <sstream>
 
-namespace radchain::cli {
+namespace radchain::render {
 namespace {
 
-using namespace radchain::render;
+[[noreturn]] void refuse_option(const std::string& option, const std::string& value, const std::string& problem) {
+  throw InputError(SourceLocation{option, 0, 0}, "", value, problem);
+}
+
+// Signal and noise electrons and a target magnitude: a detector frame of point targets; else a pushbroom's scene.
+bool is_point_target_sensor(Chain& chain) {
+  if (!chain.results().find(vocabulary::detector_signal_electrons.name) ||
+      !chain.results().find(vocabulary::detector_noise_electrons.name))
+    return false;
+  try {
+    chain.parameter("target.magnitude");
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
 
 NoiseTerms noise_of(const Params& v) {
   NoiseTerms n;
@@ -32,7 +47,8 @@ NoiseTerms noise_of(const Params& v) {
   return n;
 }
 
-RenderedImage render_space(Chain& chain, const Report& report, const RenderRequest& c, const Params& v) {
+RenderedImage render_space(Chain& chain, const Report& report, const RenderRequest& c) {
+  const Params& v = c.options;
   SpaceFrameOptions o;
   o.width = static_cast<int>(v.integer("--width"));
   o.height = static_cast<int>(v.integer("--height"));
@@ -51,12 +67,12 @@ RenderedImage render_space(Chain& chain, const Report& report, const RenderReque
         if (!std::isfinite(xym.back())) throw std::invalid_argument("not a finite number");
       }
     } catch (const std::exception&) {
-      bad_option("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
+      refuse_option("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
     }
     if (xym.size() == 1) o.targets.push_back({std::floor(o.width / 2.0) + 0.5, std::floor(o.height / 2.0) + 0.5, xym[0]});
     else if (xym.size() == 3) o.targets.push_back({xym[0], xym[1], xym[2]});
-    else bad_option("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
-    if (xym.size() == 3 && (std::isnan(xym[0]) || std::isnan(xym[1]))) bad_option("--target", t, "the position must be numbers");
+    else refuse_option("--target", t, "expected x,y,magnitude or a magnitude (\"limit\": the limiting magnitude)");
+    if (xym.size() == 3 && (std::isnan(xym[0]) || std::isnan(xym[1]))) refuse_option("--target", t, "the position must be numbers");
   }
   o.stars.count = static_cast<int>(v.integer("--stars"));
   o.stars.slope = v.get("--star-slope");
@@ -69,7 +85,7 @@ RenderedImage render_space(Chain& chain, const Report& report, const RenderReque
       o.stars.bright_magnitude = std::stod(range.substr(0, colon));
       o.stars.faint_magnitude = std::stod(range.substr(colon + 1));
     } catch (const std::exception&) {
-      bad_option("--star-magnitudes", range, "expected bright:faint, e.g. 8:17");
+      refuse_option("--star-magnitudes", range, "expected bright:faint, e.g. 8:17");
     }
   }
   apply_frame_geometry(o, v);
@@ -102,7 +118,8 @@ RenderedImage render_space(Chain& chain, const Report& report, const RenderReque
   return out;
 }
 
-RenderedImage render_earth(Chain& chain, const Report& report, const RenderRequest& c, const Params& v) {
+RenderedImage render_earth(Chain& chain, const Report& report, const RenderRequest& c) {
+  const Params& v = c.options;
   EarthSceneOptions o;
   o.output_sampling_m = v.maybe("--gsd");
   o.wavelength_m = v.maybe("--wavelength");
@@ -128,19 +145,19 @@ RenderedImage render_earth(Chain& chain, const Report& report, const RenderReque
     o.input_sampling_m = scene.sampling_m;
   } else {
     const auto sampling = v.maybe("--scene-sampling");
-    if (!sampling) bad_option("--scene-sampling", "", "give the ground size of one pixel of " + c.scene + ", e.g. \"1.25 m\"");
+    if (!sampling) refuse_option("--scene-sampling", "", "give the ground size of one pixel of " + c.scene + ", e.g. \"1.25 m\"");
     o.input_sampling_m = *sampling;
     try {  // a scene file is input: one that cannot be read is refused at --scene (exit 2), not an internal error
       map = read_reflectance_map(c.scene);
     } catch (const std::runtime_error& error) {
-      bad_option("--scene", c.scene, error.what());
+      refuse_option("--scene", c.scene, error.what());
     } catch (const std::invalid_argument& error) {
-      bad_option("--scene", c.scene, error.what());
+      refuse_option("--scene", c.scene, error.what());
     }
   }
   const EarthSceneSetup s = earth_scene_setup(chain, report, o);
   RenderedImage out;
-  out.point_targets = false;
+  out.kind = SensorImage::earth_scene;
   out.image = render_earth_scene(s, map, c.seed);
   out.header = earth_scene_header(s, c.seed);
   const Image& image = out.image;
@@ -165,9 +182,48 @@ RenderedImage render_earth(Chain& chain, const Report& report, const RenderReque
 
 }  // namespace
 
-RenderedImage render_image(Chain& chain, const Report& report, const Params& options, const RenderRequest& request) {
-  if (is_point_target_sensor(chain)) return render_space(chain, report, request, options);
-  return render_earth(chain, report, request, options);
+bool SensorView::clipped_at_zero(double offset_dn) const {
+  const double half_step = gain_dn_per_electron > 0 ? 0.5 / gain_dn_per_electron : 0.0;
+  return offset_dn == 0 && level_electrons + half_step < 3.0 * std::sqrt(level_electrons + read_noise_electrons * read_noise_electrons);
 }
 
-}  // namespace radchain::cli
+SensorView sensor_view(Chain& chain, const Report& report) {
+  SensorView view;
+  if (!is_point_target_sensor(chain)) return view;
+  view.image = SensorImage::point_frame;
+  auto value = [&](const Term& term) { return report.value(std::string(term.name)).value_or(0.0); };
+  if (value(vocabulary::detector_target_streak_pixels) > 0) view.point_check = PointCheck::streak;
+  else if (psf_weighted_photometry(report)) view.point_check = PointCheck::psf_photometry;
+  view.level_electrons = value(vocabulary::detector_dark_rate) * value(vocabulary::detector_integration_time) +
+                         value(vocabulary::detector_sky_electrons_per_pixel);
+  view.read_noise_electrons = value(vocabulary::detector_read_noise_per_pixel);
+  view.gain_dn_per_electron = value(vocabulary::detector_system_gain);
+  return view;
+}
+
+RenderedImage render_image(Chain& chain, const Report& report, const RenderRequest& request) {
+  if (is_point_target_sensor(chain)) return render_space(chain, report, request);
+  return render_earth(chain, report, request);
+}
+
+void apply_frame_geometry(SpaceFrameOptions& o, const Params& values) {
+  o.focal_length_m = values.maybe("--focal-length");
+  o.pixel_pitch_m = values.maybe("--pixel-pitch");
+  o.psf_wavelength_m = values.maybe("--psf-wavelength");
+  o.gaussian_fwhm_m = values.maybe("--psf-fwhm");
+  if (values.has("--psf")) o.psf = psf_model_from_string(values.text("--psf"));
+}
+
+PreviewOptions preview_options(const Params& v, SensorImage kind) {
+  PreviewOptions p;
+  if (kind == SensorImage::earth_scene) {  // a scene: linear between the 0.5 % and 99.5 % points
+    p.stretch = Stretch::linear;
+    p.low_percentile = 0.5;
+    p.high_percentile = 99.5;
+  }
+  if (v.has("--stretch")) p.stretch = v.text("--stretch") == "linear" ? Stretch::linear : Stretch::asinh;
+  p.upscale = static_cast<int>(v.integer("--upscale"));
+  return p;
+}
+
+}  // namespace radchain::render
