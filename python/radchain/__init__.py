@@ -457,8 +457,10 @@ def budget(path, results, set: dict | None = None, solve: bool = True):
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("budget(set=...) takes TOML value text, as --set does")
-    data = _json.loads(_radchain.budget(_path(path), texts, _names(results), not solve))
-    return _pandas().DataFrame(data["rows"], columns=data["columns"])
+    table = _radchain.budget(_path(path), texts, _names(results), not solve)
+    df = _pandas().DataFrame(table["data"], columns=table["columns"])
+    df["rank"] = df["rank"].astype(int)
+    return df
 
 
 def uncertainty(path, vary, results, samples: int = 1000, seed: int = 1, set: dict | None = None, solve: bool = True):
@@ -472,8 +474,8 @@ def uncertainty(path, vary, results, samples: int = 1000, seed: int = 1, set: di
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("uncertainty(set=...) takes TOML value text, as --set does")
-    data = _json.loads(_radchain.uncertainty(_path(path), texts, list(vary), _names(results), int(samples), int(seed), not solve))
-    return _pandas().DataFrame(data["rows"], columns=data["columns"])
+    table = _radchain.uncertainty(_path(path), texts, list(vary), _names(results), int(samples), int(seed), not solve)
+    return _pandas().DataFrame(table["data"], columns=table["columns"])
 
 
 def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True):

@@ -568,34 +568,56 @@ void register_stage(const std::string& kind_name, const std::string& name, const
                                         &create_python_stage, std::move(terms), registered->needs, InverseForm::none});
 }
 
-// --- budget and uncertainty: the CLI's tables as JSON text, parsed into DataFrames in __init__.py ----
+// --- budget and uncertainty: the library's tables (TableData) with their numbers as they are -------------------
 
-std::string budget(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
-                   const std::vector<std::string>& results, bool no_solve) {
-  std::ostringstream out;
-  py::gil_scoped_release release;
-  Chain chain = load_sensor(path, to_overrides(sets), no_solve ? Solving::forward_only : Solving::as_written);
-  BudgetOptions options;
-  options.results = results;
-  write_budget(compute_budget(chain, options), TableFormat::json, out);
-  return out.str();
+// {"columns": [...], "data": {column: float64 array (numeric columns) or list of str}}, for a DataFrame.
+py::dict table_dict(const TableData& table) {
+  py::dict data;
+  for (std::size_t c = 0; c < table.layout.columns.size(); ++c) {
+    if (table.layout.numeric[c]) {
+      py::array_t<double> column(static_cast<py::ssize_t>(table.rows.size()));
+      double* out = column.mutable_data();
+      for (const auto& row : table.rows) *out++ = std::get<double>(row[c]);
+      data[py::str(table.layout.columns[c])] = column;
+    } else {
+      py::list column;
+      for (const auto& row : table.rows) column.append(std::get<std::string>(row[c]));
+      data[py::str(table.layout.columns[c])] = column;
+    }
+  }
+  return py::dict("columns"_a = table.layout.columns, "data"_a = data);
 }
 
-std::string uncertainty(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
-                        const std::vector<std::string>& vary, const std::vector<std::string>& results, std::size_t samples,
-                        std::uint64_t seed, bool no_solve) {
-  std::ostringstream out;
-  py::gil_scoped_release release;
-  UncertaintyOptions options;
-  options.sensor_file = path;
-  options.overrides = to_overrides(sets);
-  options.vary = vary;
-  options.results = results;
-  options.samples = samples;
-  options.seed = seed;
-  options.no_solve = no_solve;
-  write_uncertainty(run_uncertainty(options), TableFormat::json, out);
-  return out.str();
+py::dict budget(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
+                const std::vector<std::string>& results, bool no_solve) {
+  TableData table;
+  {
+    py::gil_scoped_release release;
+    Chain chain = load_sensor(path, to_overrides(sets), no_solve ? Solving::forward_only : Solving::as_written);
+    BudgetOptions options;
+    options.results = results;
+    table = budget_table(compute_budget(chain, options));
+  }
+  return table_dict(table);
+}
+
+py::dict uncertainty(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
+                     const std::vector<std::string>& vary, const std::vector<std::string>& results, std::size_t samples,
+                     std::uint64_t seed, bool no_solve) {
+  TableData table;
+  {
+    py::gil_scoped_release release;
+    UncertaintyOptions options;
+    options.sensor_file = path;
+    options.overrides = to_overrides(sets);
+    options.vary = vary;
+    options.results = results;
+    options.samples = samples;
+    options.seed = seed;
+    options.no_solve = no_solve;
+    table = uncertainty_table(run_uncertainty(options));
+  }
+  return table_dict(table);
 }
 
 CompareInput compare_input(const py::object& x, const std::vector<Override>& overrides, bool solve) {

@@ -402,23 +402,16 @@ std::string note_of(const BudgetEntry& e) {
   return note;
 }
 
-std::vector<std::string> cells_of(const BudgetEntry& e) {
-  return {e.result,
-          std::to_string(e.rank),
-          e.parameter,
-          number_cell(e.value_si),
-          e.parameter_unit,
-          number_cell(e.derivative),
-          e.derivative_unit,
-          number_cell(e.elasticity),
-          e.result_unit,
-          number_cell(e.log_elasticity),
-          number_cell(e.error),
-          to_string(e.kind),
-          note_of(e)};
-}
-
 }  // namespace
+
+TableData budget_table(const Budget& budget) {
+  TableData table{budget_layout(), {}};
+  for (const BudgetEntry& e : budget.entries)
+    table.rows.push_back({e.result, static_cast<double>(e.rank), e.parameter, e.value_si, e.parameter_unit, e.derivative,
+                          e.derivative_unit, e.elasticity, e.result_unit, e.log_elasticity, e.error, to_string(e.kind),
+                          note_of(e)});
+  return table;
+}
 
 void write_budget(const Budget& budget, TableFormat format, std::ostream& out) {
   if (format == TableFormat::text) {
@@ -426,8 +419,7 @@ void write_budget(const Budget& budget, TableFormat format, std::ostream& out) {
     return;
   }
   TableWriter writer(out, format, budget_layout(), budget.entries.size());
-  for (std::size_t i = 0; i < budget.entries.size(); ++i) writer.row(i, cells_of(budget.entries[i]));
-  writer.finish(0);
+  write_table(budget_table(budget), writer);
 }
 
 std::string format_budget_text(const Budget& budget) {

@@ -306,4 +306,15 @@ void TableWriter::finish(int exit_code) {
   w.out.flush();
 }
 
+void write_table(const TableData& table, TableWriter& writer, int exit_code) {
+  std::vector<std::string> cells;
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    cells.clear();
+    for (const TableCell& cell : table.rows[i])
+      cells.push_back(std::holds_alternative<double>(cell) ? writer.number(std::get<double>(cell)) : std::get<std::string>(cell));
+    writer.row(i, cells);
+  }
+  writer.finish(exit_code);
+}
+
 }  // namespace radchain

@@ -277,30 +277,33 @@ std::string format_uncertainty_text(const Uncertainty& u) {
   return text;
 }
 
+TableData uncertainty_table(const Uncertainty& u) {
+  TableData table;
+  table.layout.kind = "uncertainty";
+  table.layout.columns = {"result", "input", "statistic", "value", "unit"};
+  table.layout.numeric = {false, false, false, true, false};
+  for (const auto& s : u.results) {
+    for (const auto& [name, value] : std::vector<std::pair<std::string, double>>{
+             {"nominal", s.nominal}, {"mean", s.mean}, {"sd", s.sd}, {"p5", s.p5}, {"p50", s.p50}, {"p95", s.p95},
+             {"linear_sd", s.linear_sd}, {"samples_used", static_cast<double>(u.used)}})
+      table.rows.push_back({s.name, std::string(), name, value, std::string(name == "samples_used" ? "1" : s.unit)});
+    for (std::size_t j = 0; j < u.inputs.size(); ++j) {
+      table.rows.push_back({s.name, u.inputs[j].key, std::string("correlation"), s.correlation[j], std::string("1")});
+      table.rows.push_back({s.name, u.inputs[j].key, std::string("derivative"), s.derivative[j], s.unit + "/" + u.inputs[j].unit});
+      table.rows.push_back({s.name, u.inputs[j].key, std::string("linear_part"), s.linear_part[j], s.unit});
+    }
+  }
+  return table;
+}
+
 void write_uncertainty(const Uncertainty& u, TableFormat format, std::ostream& out) {
   if (format == TableFormat::text) {
     out << format_uncertainty_text(u);
     return;
   }
-  TableLayout layout;
-  layout.kind = "uncertainty";
-  layout.columns = {"result", "input", "statistic", "value", "unit"};
-  layout.numeric = {false, false, false, true, false};
-  std::vector<std::vector<std::string>> rows;
-  for (const auto& s : u.results) {
-    for (const auto& [name, value] : std::vector<std::pair<std::string, double>>{
-             {"nominal", s.nominal}, {"mean", s.mean}, {"sd", s.sd}, {"p5", s.p5}, {"p50", s.p50}, {"p95", s.p95},
-             {"linear_sd", s.linear_sd}, {"samples_used", static_cast<double>(u.used)}})
-      rows.push_back({s.name, "", name, number_cell(value), name == "samples_used" ? "1" : s.unit});
-    for (std::size_t j = 0; j < u.inputs.size(); ++j) {
-      rows.push_back({s.name, u.inputs[j].key, "correlation", number_cell(s.correlation[j]), "1"});
-      rows.push_back({s.name, u.inputs[j].key, "derivative", number_cell(s.derivative[j]), s.unit + "/" + u.inputs[j].unit});
-      rows.push_back({s.name, u.inputs[j].key, "linear_part", number_cell(s.linear_part[j]), s.unit});
-    }
-  }
-  TableWriter writer(out, format, layout, rows.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) writer.row(i, rows[i]);
-  writer.finish(0);
+  const TableData table = uncertainty_table(u);
+  TableWriter writer(out, format, table.layout, table.rows.size());
+  write_table(table, writer);
 }
 
 }  // namespace radchain

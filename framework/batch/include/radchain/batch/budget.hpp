@@ -78,6 +78,7 @@ Budget compute_budget(Chain& chain, const BudgetOptions& options);
 // The table: one row per entry. Columns: result, rank, parameter, value, unit, derivative, derivative_unit,
 // elasticity, result_unit, log_elasticity, error, method, note.
 TableLayout budget_layout();
+TableData budget_table(const Budget& budget);  // the rows with their numbers as they are (Python binds these)
 void write_budget(const Budget& budget, TableFormat format, std::ostream& out);
 // Text: a header (sensor, nominal results, what was skipped) and, per result, the ranked table.
 std::string format_budget_text(const Budget& budget);

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace radchain {
@@ -81,5 +82,16 @@ class TableWriter {
 
 // A cell for a number: "{:.10g}", "nan" for NaN.
 std::string number_cell(double value);
+
+// A table held in memory with its numbers as doubles, to the last bit: what a batch function returns, so that
+// Python binds the numbers themselves and the command line writes them in any format through a TableWriter.
+// A cell of a numeric column (layout.numeric) is a double, of the others a text.
+using TableCell = std::variant<double, std::string>;
+struct TableData {
+  TableLayout layout;
+  std::vector<std::vector<TableCell>> rows;
+};
+// Every row into `writer` (numbers as writer.number(), so .npy and shards keep every bit), then finish(exit_code).
+void write_table(const TableData& table, TableWriter& writer, int exit_code = 0);
 
 }  // namespace radchain

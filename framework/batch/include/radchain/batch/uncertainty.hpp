@@ -76,7 +76,9 @@ struct Uncertainty {
 Uncertainty run_uncertainty(const UncertaintyOptions& options);
 
 std::string format_uncertainty_text(const Uncertainty& u);
-// CSV / JSON: columns result, input, statistic, value, unit (input "" for the result's own statistics).
+// CSV / JSON: columns result, input, statistic, value, unit (input "" for the result's own statistics);
+// uncertainty_table() has the rows with their numbers as they are (Python binds these).
+TableData uncertainty_table(const Uncertainty& u);
 void write_uncertainty(const Uncertainty& u, TableFormat format, std::ostream& out);
 
 }  // namespace radchain
