@@ -345,8 +345,8 @@ GSD_ABS = 2e-8  # m: both sides difference two ground points ~R = 6.4e6 m apart 
 RAD = 1e-9
 TOL_EO = {
     "platform.slant_range": (GEO, 0, "closed-form spherical trigonometry"),
-    "platform.view_zenith_angle": (GEO, 1e-12, "asin of the sine rule (abs 1e-12 rad at nadir)"),
-    "platform.tilt": (GEO, 1e-12, "acos(cos roll cos pitch) (abs 1e-12 rad at nadir)"),
+    "platform.view_zenith_angle": (GEO, 1e-18, "asin of the sine rule of the half-angle tilt; the reference: atan2 of the vectors"),
+    "platform.tilt": (GEO, 1e-18, "2 asin sqrt(a + b - 2ab), a, b = sin^2 of half roll, pitch; the reference: atan2 of the vectors"),
     "platform.ground_speed": (1e-12, 0, "sqrt(GM/(R+h)) R/(R+h)"),
     "criteria.gsd.gsd_nadir": (1e-12, 0, "h p/f'"),
     "criteria.gsd.gsd_across_track": (GEO, GSD_ABS, "great circle between neighbouring pixels' ground points"),

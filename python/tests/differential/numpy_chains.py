@@ -455,12 +455,18 @@ class EoCase:
     gsd_required: float = 10.0
 
 
+def _angle_between(a, b) -> float:
+    return math.atan2(float(np.linalg.norm(np.cross(a, b))), float(a @ b))
+
+
 def eo_geometry(c: EoCase) -> dict:
     h, r = c.altitude, c.earth_radius
     ifov = c.pixel_pitch / c.focal_length
     rng, g0 = ground_point(look_direction(c.roll, c.pitch), h, r)
     d0 = look_direction(c.roll, c.pitch)
-    view_zenith = math.acos(max(-1.0, min(1.0, float(-(d0 @ g0)) / r)))
+    # the angle between two unit vectors as atan2(|a × b|, a · b): acos of the dot product loses it near nadir
+    # (1e-12 rad at a roll of 2e-6 rad, 70× the tolerance, found by the 10^5-draw run)
+    view_zenith = _angle_between(-d0, g0 / r)
     _, ga = ground_point(look_direction(c.roll, c.pitch, -ifov / 2), h, r)
     _, gb = ground_point(look_direction(c.roll, c.pitch, +ifov / 2), h, r)
     across = great_circle(ga, gb, r)
@@ -471,7 +477,7 @@ def eo_geometry(c: EoCase) -> dict:
     out = {
         "platform.slant_range": rng,
         "platform.view_zenith_angle": view_zenith,
-        "platform.tilt": math.acos(math.cos(c.roll) * math.cos(c.pitch)),
+        "platform.tilt": _angle_between(d0, np.array([0.0, 0.0, 1.0])),
         "platform.ground_speed": speed,
         "criteria.gsd.gsd_nadir": h * ifov,
         "criteria.gsd.gsd_across_track": across,
