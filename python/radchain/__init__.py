@@ -86,30 +86,55 @@ def _no_nul(text: str, what: str) -> str:
     return text
 
 
-def _name(value, what: str = "a name") -> str:
+def _name(value, what: str = "a name", example: str = "optics.aperture") -> str:
     """A parameter or result name as given: a str ("optics.aperture"); anything else is refused, not str()-ed
     (3 would become "3", b"x" "b'x'")."""
     if not isinstance(value, str):
-        raise TypeError(f"{what} is a str such as \"optics.aperture\", not {type(value).__name__} {value!r}")
+        raise TypeError(f"{what} is a str such as \"{example}\", not {type(value).__name__} {value!r}")
     return _no_nul(value, what)
 
 
-def _names(values, what: str = "a result name") -> list:
+def _names(values, what: str = "a result name", example: str = "target.magnitude") -> list:
+    """One name or a list of names (None: none); each a str."""
+    if values is None:
+        return []
     if isinstance(values, str):
         values = [values]
-    return [_name(v, what) for v in ([] if values is None else values)]
+    elif isinstance(values, (bytes, dict)) or not hasattr(values, "__iter__"):
+        raise TypeError(f"{what} is a str or a list of str such as [\"{example}\"], not {type(values).__name__} {values!r}")
+    return [_name(v, what, example) for v in values]
 
 
 def _path(value, what: str = "a path") -> str:
-    value = _os.fspath(value)
+    try:
+        value = _os.fspath(value)
+    except TypeError:
+        raise TypeError(f"{what} is a str or os.PathLike of str, not {type(value).__name__} {value!r}") from None
     if not isinstance(value, str):
         raise TypeError(f"{what} is a str or os.PathLike of str, not {type(value).__name__} {value!r}")
     return _no_nul(value, what)
 
 
+def _integer(value, what: str, minimum: int | None = None) -> int:
+    """An int (or numpy integer) as given, not int()-ed from text or a float; below `minimum` is a ValueError."""
+    if isinstance(value, bool) or not isinstance(value, (int, _np.integer)):
+        raise TypeError(f"{what} is an int, not {type(value).__name__} {value!r}")
+    if minimum is not None and value < minimum:
+        raise ValueError(f"{what} is at least {minimum}, not {value}")
+    return int(value)
+
+
+def _real(value, what: str) -> float:
+    if not _is_number(value):
+        raise TypeError(f"{what} is a number, not {type(value).__name__} {value!r}")
+    return float(value)
+
+
 def _split_sets(set):
     """{"key": "20 cm", "other": 0.5} -> ([("key", "20 cm")], [("other", 0.5)])"""
     texts, numbers = [], []
+    if set is not None and not isinstance(set, dict):
+        raise TypeError(f"set is a dict such as {{\"optics.aperture\": \"20 cm\"}}, not {type(set).__name__} {set!r}")
     for key, value in (set or {}).items():
         if _is_number(value):
             numbers.append((_name(key, "a parameter key"), float(value)))
@@ -316,7 +341,7 @@ class Session:
         flat = [_np.ascontiguousarray(a.reshape(-1)) for a in arrays]
         if isinstance(results, str):
             results = [results]
-        names, units, out, ok, failed, failure = self._native.sweep(keys, flat, _names(results),
+        names, units, out, ok, failed, failure = self._native.sweep(keys, flat, _names(results, "sweep: results"),
                                                                     not solve, bool(allow_large))
         if failed:
             _warnings.warn(f"{failed} of {ok.size} points: {failure}", RuntimeWarning, stacklevel=2)
@@ -341,7 +366,7 @@ def load(path, set: dict | None = None, si: bool = False) -> Session:
     """Loads a sensor file, with overrides: {"optics.aperture": "20 cm"} (TOML text, as --set) or numbers as
     Session.set takes them (a key with a unit: in SI with si=True)."""
     texts, numbers = _split_sets(set)
-    session = Session(_radchain.load(_path(path), texts))
+    session = Session(_radchain.load(_path(path, "load: path"), texts))
     for key, value in numbers:
         session.set(key, value, si=si)
     return session
@@ -399,7 +424,7 @@ def describe(name: str) -> Description:
     """A plugin's keys (units, defaults, accepted ranges), what it publishes and needs; a kind's plugins
     ("criterion"); a sensor file's own table ("sensor", "solve", "expected"); or the options of the imaging
     commands ("render": what radchain.render takes, "validate")."""
-    return Description(_radchain.describe(_name(name, "a plugin or table name")))
+    return Description(_radchain.describe(_name(name, "describe: a plugin, kind, table or command name", "telescope")))
 
 
 def plugins():
@@ -412,7 +437,7 @@ def configure(plugin_path=()):
     """Sets the plugin search path: these folders, then RADCHAIN_PLUGIN_PATH, the build tree, the install prefix."""
     if isinstance(plugin_path, str):
         plugin_path = [plugin_path]
-    _radchain.configure([str(p) for p in plugin_path])
+    _radchain.configure([_path(p, "configure: a plugin folder") for p in plugin_path])
 
 
 def search_path() -> list:
@@ -421,17 +446,17 @@ def search_path() -> list:
 
 def set_threads(n: int = 0):
     """Caps the threads of sweeps and catalogues (0: every core), like --threads."""
-    _radchain.set_threads(int(n))
+    _radchain.set_threads(_integer(n, "set_threads: n", minimum=0))
 
 
 def threads() -> int:
     return int(_radchain.threads())
 
 
-def _compare_operand(x):
+def _compare_operand(x, what):
     if isinstance(x, Session):
         return x._native
-    return str(x)
+    return _path(x, f"compare: {what} (a sensor file, a results .json or a Session)")
 
 
 def compare(a, b, set: dict | None = None, solve: bool = True, tolerance: float | None = None):
@@ -441,8 +466,8 @@ def compare(a, b, set: dict | None = None, solve: bool = True, tolerance: float 
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("compare(set=...) takes TOML value text, as --set does (set numbers on a Session instead)")
-    rows = _radchain.compare(_compare_operand(a), _compare_operand(b), texts, bool(solve),
-                             None if tolerance is None else float(tolerance))
+    rows = _radchain.compare(_compare_operand(a, "a"), _compare_operand(b, "b"), texts, bool(solve),
+                             None if tolerance is None else _real(tolerance, "compare: tolerance"))
     columns = ["kind", "name", "a", "b", "unit", "a_value", "b_value", "a_si", "b_si", "si_unit", "delta",
                "delta_pct", "status"]
     return _pandas().DataFrame(rows, columns=columns)
@@ -452,12 +477,10 @@ def budget(path, results, set: dict | None = None, solve: bool = True):
     """The sensitivity budget, as `radchain budget --format json`: DataFrame of every (result, input) pair with the
     derivative ∂r/∂x (SI), the elasticity ∂r/∂ln x (for a magnitude input, ∂r/∂ln F of the flux it stands for; its
     note says so), ∂ln r/∂ln x, its error estimate and method, ranked."""
-    if isinstance(results, str):
-        results = [results]
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("budget(set=...) takes TOML value text, as --set does")
-    table = _radchain.budget(_path(path), texts, _names(results), not solve)
+    table = _radchain.budget(_path(path, "budget: path"), texts, _names(results, "budget: results"), not solve)
     df = _pandas().DataFrame(table["data"], columns=table["columns"])
     df["rank"] = df["rank"].astype(int)
     return df
@@ -467,14 +490,13 @@ def uncertainty(path, vary, results, samples: int = 1000, seed: int = 1, set: di
     """Monte Carlo over `vary` (["optics.transmittance=normal(0.56, 0.02)", ...], the key's units), as
     `radchain uncertainty --format json`: DataFrame of result, input, statistic, value, unit (mean, sd, p5, p50,
     p95, the linear-propagation sd, and per input its correlation and derivative)."""
-    if isinstance(vary, str):
-        vary = [vary]
-    if isinstance(results, str):
-        results = [results]
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("uncertainty(set=...) takes TOML value text, as --set does")
-    table = _radchain.uncertainty(_path(path), texts, list(vary), _names(results), int(samples), int(seed), not solve)
+    table = _radchain.uncertainty(_path(path, "uncertainty: path"), texts,
+                                  _names(vary, "uncertainty: vary", "optics.transmittance=normal(0.56, 0.02)"),
+                                  _names(results, "uncertainty: results"), _integer(samples, "uncertainty: samples", 1),
+                                  _integer(seed, "uncertainty: seed", 0), not solve)
     return _pandas().DataFrame(table["data"], columns=table["columns"])
 
 
@@ -483,12 +505,16 @@ def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True)
     (the file's [sensor] name), result, kind (published / peer / paper / internal / unstated for an [expected] check; solve; criterion), computed,
     reference, tolerance (the deviation the check allows, in the row's unit), unit, delta, delta_pct, check, note. df.attrs["exit_code"] is the command's (0 all held,
     1 a check failed, 2 a file was bad input), df.attrs["errors"] the bad files' one-line messages."""
-    if isinstance(inputs, str):
-        inputs = [inputs]
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("catalogue(set=...) takes TOML value text, as --set does")
-    table, errors, code = _radchain.catalogue([_path(i) for i in inputs], texts, _names(results), not solve)
+    if isinstance(inputs, (str, _os.PathLike)):
+        inputs = [inputs]
+    elif not hasattr(inputs, "__iter__") or isinstance(inputs, (bytes, dict)):
+        raise TypeError(f"catalogue: inputs are a path or a list of paths (sensor files, folders), not "
+                        f"{type(inputs).__name__} {inputs!r}")
+    table, errors, code = _radchain.catalogue([_path(i, "catalogue: an input") for i in inputs], texts,
+                                              _names(results, "catalogue: results"), not solve)
     return _catalogue_frame(table, errors, code)
 
 
@@ -503,15 +529,17 @@ def grid(path, axes: dict, set: dict | None = None, results=None, solve: bool = 
     --explain` does. df.attrs["exit_code"] is the command's (1: a solve failed at some point, NaN there; a
     RuntimeWarning says where). More than 10^8 points are refused unless allow_large=True (--allow-large). Session.sweep
     takes arbitrary values per point instead."""
+    if not isinstance(axes, dict):
+        raise TypeError(f"grid: axes are a dict such as {{\"optics.aperture\": \"15 cm:30 cm:16\"}}, not {type(axes).__name__} {axes!r}")
     if not axes:
         raise ValueError("grid: give at least one axis, e.g. {\"optics.aperture\": \"15 cm:30 cm:16\"}")
-    if isinstance(results, str):
-        results = [results]
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("grid(set=...) takes TOML value text, as --set does")
     table, failure, code, method = _radchain.sweep_table(
-        _path(path), texts, [(_name(k, "an axis key"), _no_nul(str(v), "an axis")) for k, v in axes.items()], _names(results), not solve,
+        _path(path, "grid: path"), texts,
+        [(_name(k, "grid: an axis key"), _name(v, f"grid: the axis of {k}", "15 cm:30 cm:16")) for k, v in axes.items()],
+        _names(results, "grid: results"), not solve,
         "npy", "", "block", bool(allow_large))
     if failure:
         _warnings.warn(f"radchain sweep: {failure}", RuntimeWarning, stacklevel=2)
@@ -552,8 +580,9 @@ def render(path, set: dict | None = None, targets=None, scene: str | None = None
         if isinstance(value, (list, tuple)):
             value = ",".join(str(v) for v in value)
         given.append((key.replace("_", "-"), str(value)))
-    pixels, cards, summary, kind = _imaging.render(_path(path), texts, given, target_texts, scene or "", int(seed),
-                                                   int(star_seed))
+    pixels, cards, summary, kind = _imaging.render(
+        _path(path, "render: path"), texts, given, target_texts, "" if scene is None else _path(scene, "render: scene"),
+        _integer(seed, "render: seed", 0), _integer(star_seed, "render: star_seed", 0))
     header = {key: value for key, value, _comment in cards if key not in ("COMMENT", "HISTORY", "")}
     return Image(pixels, header, cards, summary, kind)
 

@@ -106,3 +106,33 @@ def test_sweep_values_that_are_not_numbers_name_the_parameter(sbv):
     # Numbers as text are numbers (numpy's own conversion), and the point is the one a number gives.
     assert s.sweep({"optics.aperture": ["0.2"]}, results=["detector.snr"])["detector.snr"][0] == \
         s.sweep({"optics.aperture": [0.2]}, results=["detector.snr"])["detector.snr"][0]
+
+
+# Every argument of the wrong type or range names its function and argument and says what is expected, instead of
+# Python's or pybind11's generic message ("'int' object is not iterable", "incompatible function arguments",
+# "invalid literal for int()") or a silent str() of it (compare(path, 5) looked for a file named "5").
+@pytest.mark.parametrize("call, error, message", [
+    (lambda sbv: radchain.load(123), TypeError, r"^load: path is a str or os\.PathLike of str, not int 123$"),
+    (lambda sbv: radchain.load(sbv, set=["a"]), TypeError, r"^set is a dict such as"),
+    (lambda sbv: radchain.budget(sbv, 5), TypeError, r"^budget: results is a str or a list of str .*, not int 5$"),
+    (lambda sbv: radchain.uncertainty(sbv, 5, "target.magnitude"), TypeError, r"^uncertainty: vary is a str or a list of str"),
+    (lambda sbv: radchain.uncertainty(sbv, "optics.transmittance=normal(0.5, 0.01)", "target.magnitude", samples="x"),
+     TypeError, r"^uncertainty: samples is an int, not str 'x'$"),
+    (lambda sbv: radchain.uncertainty(sbv, "optics.transmittance=normal(0.5, 0.01)", "target.magnitude", samples=-5),
+     ValueError, r"^uncertainty: samples is at least 1, not -5$"),
+    (lambda sbv: radchain.uncertainty(sbv, "optics.transmittance=normal(0.5, 0.01)", "target.magnitude", samples=2.0),
+     TypeError, r"^uncertainty: samples is an int, not float 2\.0$"),
+    (lambda sbv: radchain.catalogue(5), TypeError, r"^catalogue: inputs are a path or a list of paths"),
+    (lambda sbv: radchain.catalogue(sbv, results=7), TypeError, r"^catalogue: results is a str or a list of str"),
+    (lambda sbv: radchain.compare(sbv, 5), TypeError, r"^compare: b \(a sensor file, a results \.json or a Session\) is a str"),
+    (lambda sbv: radchain.compare(sbv, sbv, tolerance="x"), TypeError, r"^compare: tolerance is a number, not str 'x'$"),
+    (lambda sbv: radchain.grid(sbv, ["optics.aperture"]), TypeError, r"^grid: axes are a dict such as"),
+    (lambda sbv: radchain.grid(sbv, {"optics.aperture": 5}), TypeError, r"^grid: the axis of optics\.aperture is a str"),
+    (lambda sbv: radchain.render(sbv, seed="x"), TypeError, r"^render: seed is an int, not str 'x'$"),
+    (lambda sbv: radchain.describe(5), TypeError, r"^describe: a plugin, kind, table or command name is a str such as \"telescope\""),
+    (lambda sbv: radchain.set_threads(-1), ValueError, r"^set_threads: n is at least 0, not -1$"),
+    (lambda sbv: radchain.load(sbv).sweep({"optics.aperture": [0.1]}, results=5), TypeError, r"^sweep: results is a str or a list"),
+])
+def test_wrong_argument_types_name_the_function_and_argument(sbv, call, error, message):
+    with pytest.raises(error, match=message):
+        call(sbv)
