@@ -6,7 +6,7 @@
 #   imaging   includes no radchain/batch header and no TBB; its library links neither (OpenImageIO loads TBB);
 #   plugins   include only core headers and link only radchain-core (and load no TBB / OpenImageIO / FFTW).
 #   python    binds the libraries, never the command line's code: nothing under python/ includes a framework/cli
-#             header or links a CLI target; radchain._radchain (module.cpp) uses core and batch (no radchain/imaging
+#             header or links a CLI target; radchain._radchain (every file of python/src but imaging.cpp) uses core and batch (no radchain/imaging
 #             header, no TBB / OpenImageIO / FFTW / CLI11 include, and the built module loads no imaging, OpenImageIO
 #             or FFTW); radchain._imaging (imaging.cpp, imported by radchain.render) binds core and imaging.
 # Usage: check_layers.sh SOURCE_DIR BINARY_DIR. Prints one line per broken rule; exit 1 if any.
@@ -31,7 +31,9 @@ forbid_includes framework/imaging 'radchain/batch/' "imaging must not include ba
 forbid_includes framework/imaging 'tbb/|oneapi/' "imaging must not use TBB"
 forbid_includes plugins 'radchain/batch/|radchain/imaging/' "plugins use the core SDK only"
 forbid_includes plugins 'tbb/|oneapi/|OpenImageIO/|fftw3|CLI/' "plugins use the core SDK only"
-forbid_includes python/src/module.cpp 'radchain/imaging/' "radchain._radchain uses core and batch, never imaging"
+for binding in "$src"/python/src/*.cpp "$src"/python/src/*.hpp; do  # radchain._radchain: every file but imaging.cpp
+  [ "${binding##*/}" = imaging.cpp ] || forbid_includes "${binding#"$src"/}" 'radchain/imaging/' "radchain._radchain uses core and batch, never imaging"
+done
 forbid_includes python 'tbb/|oneapi/|OpenImageIO/|fftw3|CLI/' "the Python modules bind radchain's libraries only"
 forbid_includes python '(\.\./)*(commands/|options\.hpp|option_schema\.hpp|overrides\.hpp|plot\.hpp|common\.hpp|terminal\.hpp)' \
   "the Python modules bind the libraries, not the command line's code"
