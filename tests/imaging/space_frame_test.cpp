@@ -2,12 +2,16 @@
 // noise statistics, determinism, star field, saturation.
 #include "radchain/physics/photometry.hpp"
 #include "radchain/physics/psf.hpp"
+#include "radchain/command_options.hpp"
 #include "radchain/imaging/render.hpp"
 #include "render_test_helpers.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
 
 namespace {
 using namespace radchain;
@@ -278,6 +282,42 @@ TEST(RenderSpaceFrame, RefusesSensorsItCannotRender) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("photometry = \"circle\" is not measured on frames"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The README's render example (msx-sbv, 45 cm, 27 µm, 200 stars, 512²) through render_image and its preview: the
+// noise is 0/1 DN at 24 e-/DN, so a median-to-99.99 % asinh stretch drew 44 % of the pixels as grey salt and the
+// stars could not be told from it. With the black point at the background + 2σ the sky is black and the stars are
+// the bright pixels: a picture a user recognises as a star field.
+TEST(RenderPreview, TheReadmeStarFieldShowsStarsOnABlackSky) {
+  auto sbv = load("msx-sbv.toml");
+  OptionValues given;
+  given.given = {{"--focal-length", "45 cm"}, {"--pixel-pitch", "27 um"}, {"--stars", "200"}};
+  const RenderRequest request{validated_options(render_option_schema(), given, "radchain render"), {}, {}, 1, 1};
+  const RenderedImage r = render_image(sbv.chain, sbv.report, request);
+  ASSERT_EQ(r.kind, SensorImage::point_frame);
+  const std::string png = (std::filesystem::temp_directory_path() /
+                           ("radchain-preview-" + std::to_string(::getpid()) + ".png")).string();
+  write_preview(png, r.image, preview_options(request.options, r.kind));
+  const Image preview = read_image(png).image;
+  std::filesystem::remove(png);
+  ASSERT_EQ(preview.width, 512);
+  long black = 0, bright = 0, bright_on_a_star = 0;
+  for (int y = 0; y < preview.height; ++y)
+    for (int x = 0; x < preview.width; ++x) {
+      black += preview(x, y) <= 10;
+      if (preview(x, y) >= 128) {
+        ++bright;
+        bright_on_a_star += r.image(x, y) >= 3;  // ≥ 3 DN: 5σ above the 0.45 DN background, a star
+      }
+    }
+  const double pixels = 512.0 * 512.0;
+  EXPECT_GT(black / pixels, 0.99) << "the background is not dark";
+  EXPECT_GE(bright, 20) << "too few stars show";
+  EXPECT_EQ(bright_on_a_star, bright) << "bright preview pixels that are noise, not stars";
 }
 
 }  // namespace

@@ -526,12 +526,31 @@ std::vector<RawCard> read_fits_header_cards(const std::string& path) {
   return cards;
 }
 
+// The median + k σ of a star frame's background (PreviewOptions::black_sigmas).
+static double background_level(const Image& image, double k) {
+  const double median = percentile(image.pixels, 50.0);
+  std::vector<float> deviation(image.pixels.size());
+  for (std::size_t i = 0; i < deviation.size(); ++i) deviation[i] = static_cast<float>(std::abs(image.pixels[i] - median));
+  double sigma = 1.4826 * percentile(deviation, 50.0);
+  if (!(sigma > 0)) {  // quantised noise: most pixels at one DN value
+    const double cut = percentile(image.pixels, 99.0);
+    double sum = 0, sum2 = 0;
+    std::size_t n = 0;
+    for (float v : image.pixels)
+      if (v <= cut) sum += v, sum2 += static_cast<double>(v) * v, ++n;
+    const double mean = n ? sum / n : 0;
+    sigma = n > 1 ? std::sqrt(std::max(0.0, (sum2 - n * mean * mean) / (n - 1))) : 0;
+  }
+  return median + k * sigma;
+}
+
 void write_preview(const std::string& path, const Image& image, const PreviewOptions& options) {
   const std::string ext = lower_extension(path);
   const bool png = ext == "png", tiff = ext == "tif" || ext == "tiff";
   if (!png && !tiff) throw std::invalid_argument("preview \"" + path + "\": use a .png or .tif file name");
   if (image.empty()) throw std::invalid_argument("write_preview: empty image");
-  const double lo = percentile(image.pixels, options.low_percentile);
+  const double lo = std::isnan(options.black_sigmas) ? percentile(image.pixels, options.low_percentile)
+                                                     : background_level(image, options.black_sigmas);
   double hi = percentile(image.pixels, options.high_percentile);
   if (!(hi > lo)) hi = lo + 1.0;
   const double soft = std::max(options.softening, 1e-6);

@@ -220,6 +220,8 @@ PreviewOptions preview_options(const Params& v, SensorImage kind) {
     p.stretch = Stretch::linear;
     p.low_percentile = 0.5;
     p.high_percentile = 99.5;
+  } else {  // a star frame: asinh from 2σ above the background, so that the noise is dark and the stars show
+    p.black_sigmas = 2.0;
   }
   if (v.has("--stretch")) p.stretch = v.text("--stretch") == "linear" ? Stretch::linear : Stretch::asinh;
   p.upscale = static_cast<int>(v.integer("--upscale"));

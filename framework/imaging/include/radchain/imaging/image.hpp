@@ -16,6 +16,7 @@
 // exactly. Unsigned 16-bit data would be written as BITPIX 16 without BZERO (read back as negative numbers
 // by other readers), so integer frames use int16 only when every value fits in 0..32767, else int32.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
@@ -102,6 +103,11 @@ struct PreviewOptions {
   double high_percentile = 99.99;  // white point
   double softening = 0.1;          // asinh only
   int upscale = 1;                 // nearest-neighbour magnification (small frames)
+  // Star frames: the black point at the background's median + black_sigmas σ instead of low_percentile, so that the
+  // sky and detector noise are dark and every star above it shows. σ is robust: 1.4826 × the median absolute
+  // deviation, or, when the noise is quantised to a DN or two and that is 0, the standard deviation of the pixels
+  // below the 99th percentile. NaN: low_percentile is the black point.
+  double black_sigmas = std::numeric_limits<double>::quiet_NaN();
 };
 // PNG (8-bit) or TIFF (16-bit) by the file's extension (.png, .tif, .tiff). Throws std::invalid_argument for
 // another extension and std::runtime_error when OpenImageIO fails.
