@@ -354,7 +354,7 @@ class Session:
         if frame:
             pd = _pandas()
             df = pd.DataFrame({k: v.reshape(-1) for k, v in columns.items()})
-            df.attrs["units"] = dict(zip(names, units))
+            df.attrs["units"] = {**{k: self._native.si_unit(k) for k in keys}, **dict(zip(names, units))}
             return df
         return columns
 
@@ -520,8 +520,9 @@ def catalogue(inputs, set: dict | None = None, results=None, solve: bool = True)
 
 def grid(path, axes: dict, set: dict | None = None, results=None, solve: bool = True, allow_large: bool = False):
     """`radchain sweep path --set key=from:to:steps …` on all cores, in memory: a DataFrame of the grid's points in
-    point order (the last axis varying fastest), the columns of `radchain sweep --out grid.npy` ("optics.aperture_cm",
-    "target.magnitude", …: axes in the unit their range is written in, results in their display units).
+    point order (the last axis varying fastest), one column per axis and result under its bare name
+    ("optics.aperture", "target.magnitude") in SI, as Session.sweep(frame=True) has them; df.attrs["units"] names each
+    column's SI unit. (`radchain sweep --out grid.npy` writes the same points in the units written and displayed.)
 
     axes: {"<section>.<key>": "from:to:steps"} (e.g. "15 cm:30 cm:100"), the first outermost; set: fixed values, TOML
     text. A grid of limiting magnitudes is factored by axis where the chain allows it (docs/performance.md, "Factored
@@ -536,15 +537,16 @@ def grid(path, axes: dict, set: dict | None = None, results=None, solve: bool = 
     texts, numbers = _split_sets(set)
     if numbers:
         raise TypeError("grid(set=...) takes TOML value text, as --set does")
-    table, failure, code, method = _radchain.sweep_table(
+    table, failure, code, method, units = _radchain.sweep_table(
         _path(path, "grid: path"), texts,
         [(_name(k, "grid: an axis key"), _name(v, f"grid: the axis of {k}", "15 cm:30 cm:16")) for k, v in axes.items()],
         _names(results, "grid: results"), not solve,
-        "npy", "", "block", bool(allow_large))
+        "npy", "", "block", bool(allow_large), True)
     if failure:
         _warnings.warn(f"radchain sweep: {failure}", RuntimeWarning, stacklevel=2)
     # (radchain's own bytes: a wide table's header may exceed np.load's default 10000-byte guard against hostile files)
     df = _pandas().DataFrame(_np.load(_io.BytesIO(table), max_header_size=len(table)))
+    df.attrs["units"] = dict(zip(df.columns, units))
     df.attrs["exit_code"] = code
     df.attrs["method"] = method
     return df

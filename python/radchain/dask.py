@@ -33,7 +33,9 @@ def _catalogue_shard(inputs, sets, results, no_solve, shard, order):
 
 
 def _sweep_shard(path, sets, axes, results, no_solve, allow_large, shard, order):
-    return _radchain.sweep_table(path, sets, axes, results, no_solve, "npy", shard, order, allow_large)[:2]
+    table, failure, _code, _method, units = _radchain.sweep_table(path, sets, axes, results, no_solve, "npy", shard,
+                                                                   order, allow_large, True)
+    return table, failure, units
 
 
 def _texts_only(set, call):
@@ -45,7 +47,7 @@ def _texts_only(set, call):
 
 def _run_sharded(client, task, args, shards, order, format):
     """One task per shard k/n (1 <= k <= n) of the same job; the shard files merged in point order.
-    Returns (merged bytes, exit code, the failure messages of the shards, in shard order)."""
+    Returns (merged bytes, exit code, the failure messages of the shards in shard order, the first shard's answer)."""
     if shards is None:
         shards = max(1, len(client.scheduler_info()["workers"]))
     shards = int(shards)
@@ -55,20 +57,19 @@ def _run_sharded(client, task, args, shards, order, format):
     parts = client.gather(futures)
     with _tempfile.TemporaryDirectory(prefix="radchain-shards-") as folder:
         files = []
-        for k, (table, _failure) in enumerate(parts, start=1):
+        for k, (table, *_rest) in enumerate(parts, start=1):
             files.append(_os.path.join(folder, f"part-{k}-of-{shards}.csv"))
             with open(files[-1], "wb") as f:
                 f.write(table)
         merged, code = _radchain.merge(files, format)
-    return merged, code, [failure for _table, failure in parts if failure]
+    return merged, code, [part[1] for part in parts if part[1]], parts[0]
 
 
 def sweep(client, path, axes: dict, set: dict | None = None, results=None, solve: bool = True, shards: int | None = None,
           order: str = "block", allow_large: bool = False):
-    """`radchain sweep path --set key=from:to:steps …` over the cluster: a DataFrame of the grid points in point
-    order (the last axis varying fastest), the columns and float64 values of `radchain sweep --out grid.npy`
-    ("optics.aperture_cm", "target.magnitude", … : axes in the unit their range is written in, results in their
-    display units).
+    """`radchain sweep path --set key=from:to:steps …` over the cluster: radchain.grid's DataFrame, bit for bit (the
+    grid points in point order, the last axis varying fastest; columns in SI under their bare names, their units in
+    df.attrs["units"]).
 
     axes: {"<section>.<key>": "from:to:steps"} (e.g. "15 cm:30 cm:1000"), the first outermost. set: fixed values,
     TOML text. shards: how many tasks (default: one per worker); order: "block" or "round-robin" (--shard-order).
@@ -82,11 +83,12 @@ def sweep(client, path, axes: dict, set: dict | None = None, results=None, solve
     args = (_os.path.abspath(_path(path)), _texts_only(set, "sweep"),
             [(_name(k, "an axis key"), _no_nul(str(v), "an axis")) for k, v in axes.items()], _names(results), not solve,
             bool(allow_large))
-    merged, code, failures = _run_sharded(client, _sweep_shard, args, shards, order, "npy")
+    merged, code, failures, (_table, _failure, units) = _run_sharded(client, _sweep_shard, args, shards, order, "npy")
     if failures:
         _warnings.warn(f"radchain sweep: {failures[0]}", RuntimeWarning, stacklevel=2)
     # (radchain's own bytes: a wide table's header may exceed np.load's default 10000-byte guard against hostile files)
     df = _pandas().DataFrame(_np.load(_io.BytesIO(merged), max_header_size=len(merged)))
+    df.attrs["units"] = dict(zip(df.columns, units))
     df.attrs["exit_code"] = code
     return df
 
@@ -99,5 +101,5 @@ def catalogue(client, inputs, set: dict | None = None, results=None, solve: bool
     if isinstance(inputs, str):
         inputs = [inputs]
     args = ([_os.path.abspath(_path(i)) for i in inputs], _texts_only(set, "catalogue"), _names(results), not solve)
-    merged, code, _failures = _run_sharded(client, _catalogue_shard, args, shards, order, "json")
+    merged, code, _failures, _first = _run_sharded(client, _catalogue_shard, args, shards, order, "json")
     return _catalogue_frame(merged.decode(), None, code)

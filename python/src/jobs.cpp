@@ -153,14 +153,16 @@ py::tuple catalogue(const std::vector<std::string>& inputs, const std::vector<st
 // --- grid sweeps and merge (radchain.dask): `radchain sweep` and `radchain merge` with their outputs in memory --------
 
 // `radchain sweep path --set k=v … --set axis=from:to:steps … --results … [--no-solve] --format F [--shard k/n]`:
-// the table's bytes (a shard file when sharded), the first failing point's message ("" if none), the exit code and
-// how the points were solved (Sweep::method(), what --explain prints).
+// the table's bytes (a shard file when sharded), the first failing point's message ("" if none), the exit code,
+// how the points were solved (Sweep::method(), what --explain prints) and each column's unit. si_columns: the
+// columns in SI under their bare names (radchain.grid, radchain.dask.sweep), as Session.sweep gives them.
 py::tuple sweep_table(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
                       const std::vector<std::pair<std::string, std::string>>& axes, const std::vector<std::string>& results,
                       bool no_solve, const std::string& format, const std::string& shard, const std::string& order,
-                      bool allow_large) {
+                      bool allow_large, bool si_columns) {
   std::ostringstream out;
   std::string failure, method;
+  std::vector<std::string> units;
   int code = 0;
   {
     py::gil_scoped_release release;
@@ -172,13 +174,15 @@ py::tuple sweep_table(const std::string& path, const std::vector<std::pair<std::
     options.no_solve = no_solve;
     options.shard = shard_of(shard, order);
     options.allow_large = allow_large;
+    options.si_columns = si_columns;
     Sweep sweep(options);
+    units = sweep.column_units();
     TableWriter writer(out, parse_table_format(format), sweep.layout(), sweep.points(), options.shard, sweep.job());
     code = sweep.run(writer, &failure);
     writer.finish(code);
     method = sweep.method();
   }
-  return py::make_tuple(py::bytes(out.str()), failure, code, method);
+  return py::make_tuple(py::bytes(out.str()), failure, code, method, units);
 }
 
 // `radchain merge files… --format F`: the unsharded job's bytes and its exit code.

@@ -1,4 +1,5 @@
-"""radchain.dask on a LocalCluster of 2 workers: the merged shards equal the command line's unsharded output."""
+"""radchain.dask on a LocalCluster of 2 workers: the merged shards equal the unsharded job (radchain.grid, the command
+line's catalogue)."""
 import distributed  # python3-distributed (scripts/setup-debian.sh)
 import numpy as np
 import pandas as pd
@@ -20,30 +21,35 @@ RESULTS = ["target.magnitude", "detector.snr"]
 
 
 @pytest.fixture(scope="module")
-def cli_grid(cli, sbv, tmp_path_factory):
-    """`radchain sweep … --out grid.npy`, unsharded: the reference, doubles as computed."""
+def local_grid(cli, sbv, tmp_path_factory):
+    """radchain.grid, unsharded (SI columns), and `radchain sweep … --out grid.npy` (display units)."""
     out = tmp_path_factory.mktemp("grid") / "grid.npy"
     cli("sweep", sbv, *[a for k, v in AXES.items() for a in ("--set", f"{k}={v}")],
         "--results", ",".join(RESULTS), "--out", out)
-    return np.load(out)
+    return radchain.grid(sbv, AXES, results=RESULTS), np.load(out)
 
 
 @pytest.mark.parametrize("shards, order", [(None, "block"), (3, "round-robin"), (5, "block")])
-def test_sweep_equals_unsharded_cli_bit_for_bit(client, sbv, cli_grid, shards, order):
+def test_sweep_equals_unsharded_grid_bit_for_bit(client, sbv, local_grid, shards, order):
+    grid, cli_grid = local_grid
     df = radchain.dask.sweep(client, sbv, AXES, results=RESULTS, shards=shards, order=order)
-    assert list(df.columns) == list(cli_grid.dtype.names)
+    assert list(df.columns) == list(grid.columns) == ["optics.aperture", "detector.integration_time", *RESULTS]
+    assert df.attrs["units"] == grid.attrs["units"]
     assert len(df) == 21 and df.attrs["exit_code"] == 0
-    for name in cli_grid.dtype.names:
+    for name in grid.columns:
+        assert np.array_equal(df[name].to_numpy(), grid[name].to_numpy()), name
+    # the results are the command line's to the last bit (dimensionless: the same numbers in either convention)
+    for name in RESULTS:
         assert np.array_equal(df[name].to_numpy(), cli_grid[name]), name
     # point order: the last axis fastest
-    assert list(df["detector.integration_time_s"][:3]) == [0.5, 1.25, 2.0]
-    assert df["optics.aperture_cm"].iloc[3] == 17.5
+    assert list(df["detector.integration_time"][:3]) == [0.5, 1.25, 2.0]
+    assert df["optics.aperture"].iloc[3] == 0.175
 
 
 def test_sweep_points_equal_session_run(client, sbv):
     df = radchain.dask.sweep(client, sbv, {"optics.aperture": "20 cm:25 cm:2"}, results="target.magnitude")
-    for aperture_cm, magnitude in zip(df["optics.aperture_cm"], df["target.magnitude"]):
-        r = radchain.load(sbv, set={"optics.aperture": f"{aperture_cm:g} cm"}).run()
+    for aperture, magnitude in zip(df["optics.aperture"], df["target.magnitude"]):
+        r = radchain.load(sbv, set={"optics.aperture": f"{aperture!r} m"}).run()
         assert magnitude == pytest.approx(r["target.magnitude"], rel=1e-12)
 
 

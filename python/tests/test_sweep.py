@@ -102,7 +102,7 @@ def test_thread_count_does_not_change_results(sbv):
 def test_sweep_frame(sbv):
     df = radchain.load(sbv).sweep({"optics.aperture": [0.15, 0.2]}, results=["target.magnitude"], frame=True)
     assert list(df.columns) == ["optics.aperture", "target.magnitude", "ok"]
-    assert df.attrs["units"] == {"target.magnitude": "1"}
+    assert df.attrs["units"] == {"optics.aperture": "m", "target.magnitude": "1"}  # parameters and results
     assert df["target.magnitude"][0] == pytest.approx(15.5565, abs=1e-4)  # README: 15.5565 vs 15.55 printed
 
 
@@ -196,19 +196,22 @@ def test_ctrl_c_stops_a_long_sweep(sbv):
 def test_grid_is_factored_and_agrees_with_the_per_point_sweep(cli, sbv):
     axes = {"optics.aperture": "15 cm:30 cm:40", "detector.integration_time": "0.1 s:2 s:40"}
     df = radchain.grid(sbv, axes, results="target.magnitude")
-    assert list(df) == ["optics.aperture_cm", "detector.integration_time_s", "target.magnitude"]
+    # columns in SI under their bare names, as Session.sweep's; their units in attrs
+    assert list(df) == ["optics.aperture", "detector.integration_time", "target.magnitude"]
+    assert df.attrs["units"] == {"optics.aperture": "m", "detector.integration_time": "s", "target.magnitude": "1"}
     assert len(df) == 1600 and df.attrs["exit_code"] == 0
     assert df.attrs["method"].startswith("closed form factored over the grid: the noise floor varies with "
                                          "detector.integration_time;"), df.attrs["method"]
     # the same points through Session.sweep (lanes, each solved on its own)
-    d = np.repeat(df["optics.aperture_cm"].to_numpy().reshape(40, 40)[:, 0] * 0.01, 40)
-    t = np.tile(df["detector.integration_time_s"].to_numpy()[:40], 40)
+    d = df["optics.aperture"].to_numpy()
+    t = df["detector.integration_time"].to_numpy()
     per_point = radchain.load(sbv).sweep({"optics.aperture": d, "detector.integration_time": t}, results="target.magnitude")
     np.testing.assert_allclose(df["target.magnitude"], per_point["target.magnitude"], rtol=1e-10, atol=0)
     # and the CLI's CSV of the same sweep, to its 10 digits
     header, ref = cli_csv(cli, sbv, "--set", "optics.aperture=15 cm:30 cm:40", "--set", "detector.integration_time=0.1 s:2 s:40",
                           "--results", "target.magnitude")
     np.testing.assert_allclose(df["target.magnitude"], ref[:, 2], rtol=6e-10, atol=0)  # the CSV's 10 digits
+    np.testing.assert_allclose(df["optics.aperture"], ref[:, 0] * 0.01, rtol=6e-10, atol=0)  # the CSV in cm, 10 digits
     dimmer = radchain.grid(sbv, axes, results="target.magnitude", set={"optics.transmittance": "0.5"})
     assert dimmer.attrs["method"].startswith("closed form factored"), dimmer.attrs["method"]
     # S ∝ τ and the SBV's floor does not depend on it: every limit 2.5 lg(0.56/0.5) brighter
@@ -216,3 +219,10 @@ def test_grid_is_factored_and_agrees_with_the_per_point_sweep(cli, sbv):
     more = radchain.grid(sbv, axes, results=["target.magnitude", "detector.snr"])
     assert more.attrs["method"] == "per point: a result other than the solved target.magnitude is read (detector.snr)"
     np.testing.assert_allclose(more["target.magnitude"], df["target.magnitude"], rtol=1e-10, atol=0)
+    # per point, grid and Session.sweep are one engine at the same SI values: the same bits
+    same = radchain.load(sbv).sweep({"optics.aperture": d, "detector.integration_time": t},
+                                    results=["target.magnitude", "detector.snr"], frame=True)
+    assert list(same.columns[:-1]) == list(more.columns)
+    assert same.attrs["units"] == more.attrs["units"]
+    for name in more.columns:
+        assert np.array_equal(same[name].to_numpy(), more[name].to_numpy()), name

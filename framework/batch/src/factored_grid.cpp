@@ -158,6 +158,9 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
     grid.steps_[a] = axes[a].steps;
     grid.axis_values_[a].resize(axes[a].steps);
     for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_values_[a][i] = axes[a].value(i);
+    grid.axis_columns_.push_back(grid.axis_values_[a]);
+    if (sweep.options().si_columns)
+      for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_columns_[a][i] = axes[a].value_si(i);
   }
   std::vector<std::vector<double>> line(n_axes);  // lg S_end along each axis through x₀
   std::vector<std::size_t> step(n_axes, 0);
@@ -260,7 +263,7 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
     return std::nullopt;
   }
   for (const auto& name : sweep.results())
-    grid.column_factors_.push_back(chain.results().info(*chain.results().find(name)).display_factor);
+    grid.column_factors_.push_back(sweep.options().si_columns ? 1.0 : chain.results().info(*chain.results().find(name)).display_factor);
 
   // The plan against the per-point solve: the grid's corners and points spread over it.
   std::vector<std::size_t> checked;
@@ -328,10 +331,10 @@ void FactoredGrid::evaluate(std::size_t first, std::size_t count, std::size_t st
     for (std::size_t a = 0; a < last; ++a) {
       outer += axis_terms_[a][index[a]];
       floor_outer += index[a] * floor_strides_[a];
-      outer_values[a] = axis_values_[a][index[a]];
+      outer_values[a] = axis_columns_[a][index[a]];
     }
     const double* inner = axis_terms_[last].data() + i0;
-    const double* values = axis_values_[last].data() + i0;
+    const double* values = axis_columns_[last].data() + i0;
     const double* floor = floor_terms_.data() + floor_outer + i0 * floor_step;
     double* rows = out + k * n_columns;
     const Run r{rows, ok + k, run, n_columns, outer_values.data(), values, inner, floor, floor_step, outer, low, high};

@@ -117,6 +117,7 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
   axis.unit = ends_unit[0].empty() ? ends_unit[1] : ends_unit[0];
   try {
     const std::string si = spec.type == ParamType::quantity ? spec.si_unit : std::string("1");
+    axis.si_unit = si;
     axis.to_si = units::conversion(axis.unit.empty() ? "1" : axis.unit, si).factor;
     // `to` in the unit of `from`, so that the steps are even in the unit written first.
     const double to_factor = units::conversion(ends_unit[1].empty() ? "1" : ends_unit[1], si).factor;
@@ -196,14 +197,16 @@ Sweep::Sweep(SweepOptions options) : options_(std::move(options)) {
                                    did_you_mean(name, all), options_.sensor_file));
     }
     units_.push_back(results.info(*id).display_unit);
+    si_units_.push_back(results.info(*id).si_unit);
   }
   // A swept parameter is also a result (optics.aperture): its column is the axis's, once; two columns of one name
   // make a table that numpy.load refuses.
   for (std::size_t i = results_.size(); i-- > 0;)
     for (const auto& a : axes_)
-      if (column_name(results_[i], units_[i]) == column_name(a.key, a.unit)) {
+      if (options_.si_columns ? results_[i] == a.key : column_name(results_[i], units_[i]) == column_name(a.key, a.unit)) {
         results_.erase(results_.begin() + static_cast<std::ptrdiff_t>(i));
         units_.erase(units_.begin() + static_cast<std::ptrdiff_t>(i));
+        si_units_.erase(si_units_.begin() + static_cast<std::ptrdiff_t>(i));
         break;
       }
   constexpr double max_points = SweepOptions::max_points;
@@ -223,8 +226,9 @@ Sweep::Sweep(SweepOptions options) : options_(std::move(options)) {
 TableLayout Sweep::layout() const {
   TableLayout layout;
   layout.kind = "sweep";
-  for (const auto& a : axes_) layout.columns.push_back(column_name(a.key, a.unit));
-  for (std::size_t i = 0; i < results_.size(); ++i) layout.columns.push_back(column_name(results_[i], units_[i]));
+  for (const auto& a : axes_) layout.columns.push_back(options_.si_columns ? a.key : column_name(a.key, a.unit));
+  for (std::size_t i = 0; i < results_.size(); ++i)
+    layout.columns.push_back(options_.si_columns ? results_[i] : column_name(results_[i], units_[i]));
   layout.numeric.assign(layout.columns.size(), true);
   return layout;
 }
@@ -236,7 +240,15 @@ std::string Sweep::job() const {
   for (const auto& r : results_) job += "result " + r + "\n";
   if (options_.no_solve) job += "no-solve\n";
   if (options_.solver == SolverChoice::root) job += "solver root\n";
+  if (options_.si_columns) job += "si columns\n";
   return job;
+}
+
+std::vector<std::string> Sweep::column_units() const {
+  std::vector<std::string> units;
+  for (const auto& a : axes_) units.push_back(options_.si_columns ? a.si_unit : a.unit.empty() ? "1" : a.unit);
+  for (std::size_t i = 0; i < results_.size(); ++i) units.push_back(options_.si_columns ? si_units_[i] : units_[i]);
+  return units;
 }
 
 std::vector<std::size_t> Sweep::indices(std::size_t point) const {
@@ -338,7 +350,8 @@ int Sweep::run(TableWriter& writer, std::string* failure,
 
 SweepWorker::SweepWorker(const Sweep& sweep)
     : sweep_(sweep),
-      engine_(load_swept_sensor(sweep.options()), axis_keys(sweep.axes()), sweep.results(), PointEngine::Scale::display,
+      engine_(load_swept_sensor(sweep.options()), axis_keys(sweep.axes()), sweep.results(),
+              sweep.options().si_columns ? PointEngine::Scale::si : PointEngine::Scale::display,
               [this](std::size_t k) { return "at " + point_text(sweep_.axes(), rows_ + k * sweep_.columns()); }) {
   index_.resize(sweep.axes().size());
   axis_values_.resize(sweep.axes().size());
@@ -350,7 +363,8 @@ const SweepWorker::AxisValue& SweepWorker::axis_value(std::size_t axis) {
   AxisValue& v = axis_values_[axis];
   if (v.step != index_[axis]) {
     const SweepAxis& a = sweep_.axes()[axis];
-    v = AxisValue{index_[axis], a.value(index_[axis]), a.value_si(index_[axis])};
+    const double value_si = a.value_si(index_[axis]);
+    v = AxisValue{index_[axis], sweep_.options().si_columns ? value_si : a.value(index_[axis]), value_si};
   }
   return v;
 }

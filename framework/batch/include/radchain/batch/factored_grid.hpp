@@ -54,10 +54,11 @@ class FactoredGrid {
   FactoredGrid() = default;
   std::vector<std::size_t> steps_;                 // per axis
   std::vector<std::vector<double>> axis_values_;   // per axis, each step's value in the axis's unit
+  std::vector<std::vector<double>> axis_columns_;  // per axis, each step's value as its column holds it (unit or SI)
   std::vector<std::vector<double>> axis_terms_;    // B_a per step
   std::vector<double> floor_terms_;                // P over the sub-grid of J, first axis outermost
   std::vector<std::size_t> floor_strides_;         // per axis: its stride in floor_terms_ (0 for an axis not in J)
-  std::vector<double> column_factors_;             // per result column: SI to display unit
+  std::vector<double> column_factors_;             // per result column: SI to its column's unit (display or SI)
   double bright_ = 0, faint_ = 0;                  // the bracket (magnitudes)
   std::string description_;
 };

@@ -29,6 +29,7 @@ struct SweepAxis {
   double from = 0, to = 0;    // in `unit`
   std::size_t steps = 1;
   std::string unit;           // the unit the range is written in ("" for plain numbers)
+  std::string si_unit;        // the parameter's SI unit ("1" for plain numbers)
   double to_si = 1;           // value_si = value × to_si (units::to_si)
   double from_si = 0, to_si_value = 0;  // the ends in SI, read from their text as a file's value is
   double value(std::size_t i) const;  // in `unit`; the last value is `to` exactly
@@ -55,6 +56,10 @@ struct SweepOptions {
   // A grid of more than large_points is refused unless allow_large (--allow-large): hours of work and gigabytes of
   // output should be asked for, not started by a typo. Above max_points it is refused outright.
   bool allow_large = false;
+  // Columns in SI, named by the bare key or result (Python's radchain.grid and radchain.dask.sweep, whose units are
+  // the DataFrame's attrs, as Session.sweep's are); false: in the units written and displayed, with the unit in the
+  // column's name (`radchain sweep`: "optics.aperture_cm").
+  bool si_columns = false;
   static constexpr double large_points = 1e8;
   static constexpr double max_points = 1e10;
 };
@@ -68,10 +73,12 @@ class Sweep {
   const std::vector<SweepAxis>& axes() const { return axes_; }
   const std::vector<std::string>& results() const { return results_; }  // names of the result columns
   const std::vector<std::string>& result_units() const { return units_; }  // their display units
+  // Every column's unit as written to it: the axes' and results' units, SI ones with si_columns.
+  std::vector<std::string> column_units() const;
   std::size_t points() const { return points_; }                          // the whole grid
   std::size_t columns() const { return axes_.size() + results_.size(); }
   // Columns: each axis as "<key>_<unit>", then each result as "<name>_<display unit>" (no suffix for "1"),
-  // the convention of the spectra/ CSV headers.
+  // the convention of the spectra/ CSV headers; with si_columns the bare names.
   TableLayout layout() const;
   std::string job() const;  // what identifies the job for merge (file, overrides, axes, results)
   // Index along each axis of a grid point (the last axis varies fastest).
@@ -89,7 +96,7 @@ class Sweep {
  private:
   SweepOptions options_;
   std::vector<SweepAxis> axes_;
-  std::vector<std::string> results_, units_;
+  std::vector<std::string> results_, units_, si_units_;
   std::size_t points_ = 1;
   std::string method_;
 };
