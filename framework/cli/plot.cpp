@@ -1,4 +1,4 @@
-// Plots of the command line (a 1-D sweep, MTF curves, a budget's tornado), drawn by the gnuplot binary (Debian gnuplot-nox has the pngcairo terminal; the plain
+// Plots of the command line (a 1-D sweep, a 2-D sweep's heat maps, MTF curves, a budget's tornado), drawn by the gnuplot binary (Debian gnuplot-nox has the pngcairo terminal; the plain
 // png terminal, libgd, is the fallback).
 //
 // Trust: every text that comes from outside (sensor names and paths in titles, result names, units, the output
@@ -42,7 +42,9 @@ constexpr const char* plot_script = R"gp(set output ARG1
 set datafile missing 'NaN'
 set datafile separator "\t"
 set grid
-set key off
+set key outside top right horizontal
+set y2range [0:1]
+unset y2tics
 set multiplot layout panels, 1 title ARG3
 labels = ARG5
 do for [i = 1:panels] {
@@ -51,8 +53,64 @@ do for [i = 1:panels] {
   labels = (cut > 0) ? labels[cut + 1:*] : ""
   set xlabel ARG4
   set ylabel ylab
+  if (logy[i]) { set logscale y } else { unset logscale y }
   if (fixed[i]) { set yrange [low[i]:high[i]] } else { set autoscale y }
-  plot ARG2 using 1:(column(i + 1)) with linespoints pointtype 7 pointsize 0.6
+  # points without a value (a failed solve: NaN) are marked along the bottom, not dropped without a trace
+  if (failed[i] > 0) {
+    plot ARG2 using 1:(column(i + 1)) with linespoints pointtype 7 pointsize 0.6 lc rgb "#1f77b4" notitle, \
+         ARG2 using 1:(column(panels + i + 1) > 0 ? 0.04 : NaN) axes x1y2 with points pointtype 2 pointsize 1.5 lw 2 \
+              lc rgb "#d62728" title sprintf("no value (the solve failed): %d point%s", failed[i], failed[i] > 1 ? "s" : "")
+  } else {
+    plot ARG2 using 1:(column(i + 1)) with linespoints pointtype 7 pointsize 0.6 lc rgb "#1f77b4" notitle
+  }
+}
+unset multiplot
+set output
+)gp";
+
+// A 2-D sweep (radchain sweep --plot with two axes): one heat map per series (the axes are evenly spaced: an
+// image) with labelled contour lines; points without a value (a failed solve) are left grey and counted in the
+// title; a series that is constant up to rounding (an SNR held by a solve) gets a ±0.1 % colour range and no
+// contours. Fixed text. ARG1 output PNG, ARG2 data file (x, y, one column per series; a blank line after each x),
+// ARG3 title, ARG4 x label, ARG5 y label, ARG6 the series' labels separated by \037. The terminal, the panel
+// count, the fixed ranges and the failed counts are written before it by plot_heatmaps.
+constexpr const char* heatmap_script = R"gp(set output ARG1
+# (NaN is not declared missing: an image leaves an undefined value's pixel undrawn, so the grey behind shows)
+set datafile separator whitespace
+set key off
+set palette rgb 33,13,10
+set object 1 rectangle from graph 0, graph 0 to graph 1, graph 1 behind fillcolor rgb "#b0b0b0" fillstyle solid noborder
+set multiplot layout panels, 1 title ARG3
+labels = ARG6
+do for [i = 1:panels] {
+  cut = strstrt(labels, "\037")
+  zlab = (cut > 0) ? labels[1:cut - 1] : labels
+  labels = (cut > 0) ? labels[cut + 1:*] : ""
+  # the contour lines, traced by gnuplot into a table beside the data (a file of the private folder)
+  contours = ARG2 . ".contours"
+  if (!fixed[i]) {
+    set contour base
+    set cntrparam levels auto 8
+    unset surface
+    set view map
+    set table contours
+    splot ARG2 using 1:2:(column(i + 2)) with lines
+    unset table
+    unset contour
+    set view
+  }
+  set autoscale fix
+  if (fixed[i]) { set cbrange [low[i]:high[i]] } else { set autoscale cb }
+  set xlabel ARG4
+  set ylabel ARG5
+  set cblabel zlab
+  set title zlab . (failed[i] > 0 ? sprintf("  (grey: no value, the solve failed: %d point%s)", failed[i], failed[i] > 1 ? "s" : "") : "")
+  if (fixed[i]) {
+    plot ARG2 using 1:2:(column(i + 2)) with image
+  } else {
+    plot ARG2 using 1:2:(column(i + 2)) with image, contours using 1:2 with lines lc rgb "black" lw 1, \
+         contours using 1:2:(sprintf("%.4g", $3)) every 40 with labels boxed
+  }
 }
 unset multiplot
 set output
@@ -65,12 +123,15 @@ constexpr const char* curves_script = R"gp(set output ARG1
 set datafile missing 'NaN'
 set datafile separator "\t"
 set grid
-set key outside right top
-set title ARG3
+set key outside center bottom horizontal maxrows 3 samplen 3
+set title ARG3 font ",11"
 set xlabel ARG4
 set ylabel ARG5
 if (log_y) { set logscale y; set yrange [1e-3:1.05] } else { set yrange [0:1.05] }
-if (mark == mark) { set arrow 1 from mark, graph 0 to mark, graph 1 nohead dt 2 lw 1.5; set label 1 ARG7 at mark, graph 0.96 left offset 0.5, 0 }
+if (mark == mark) { set arrow 1 from mark, graph 0 to mark, graph 1 nohead dt 2 lw 1.5; set label 1 ARG7 at mark, graph 0.04 left offset 0.5, 0 front }
+# ten colours (Tableau 10) and five dash patterns: no two curves of a budget (nine) look alike
+array colours[10] = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"]
+do for [k = 1:10] { d = (k - 1) % 5 + 1; set linetype k linecolor rgb colours[k] linewidth 2 dashtype d }
 array names[curves]
 labels = ARG6
 do for [i = 1:curves] {
@@ -78,7 +139,8 @@ do for [i = 1:curves] {
   names[i] = (cut > 0) ? labels[1:cut - 1] : labels
   labels = (cut > 0) ? labels[cut + 1:*] : ""
 }
-plot for [i = 1:curves] ARG2 using 1:(column(i + 1)) with lines lw 2 title names[i]
+plot for [i = 1:curves] ARG2 using 1:(column(i + 1)) with lines linetype ((i - 1) % 10 + 1) lw (i == curves ? 3 : 2) \
+     title names[i]
 set output
 )gp";
 
@@ -171,13 +233,32 @@ YRange y_range(const std::vector<double>& y) {
   return {true, mean - half, mean + half};
 }
 
-// The data file of a sweep or of curves: x, then one column per series (NaN where not finite), tab-separated.
-void write_columns(std::ostream& out, const std::vector<double>& x, const std::vector<PlotSeries>& series) {
+// The data file of a sweep or of curves: x, then one column per series (NaN where not finite), tab-separated;
+// with `flags`, then one column per series that is 1 where it has no value (the failed points the plot marks).
+void write_columns(std::ostream& out, const std::vector<double>& x, const std::vector<PlotSeries>& series,
+                   bool flags = false) {
   for (std::size_t i = 0; i < x.size(); ++i) {
     out << fmt::format("{:.17g}", x[i]);
     for (const auto& s : series) out << '\t' << (std::isfinite(s.y[i]) ? fmt::format("{:.17g}", s.y[i]) : "NaN");
+    if (flags)
+      for (const auto& s : series) out << '\t' << (std::isfinite(s.y[i]) ? 0 : 1);
     out << '\n';
   }
+}
+
+std::size_t failed_points(const std::vector<double>& y) {
+  return static_cast<std::size_t>(std::count_if(y.begin(), y.end(), [](double v) { return !std::isfinite(v); }));
+}
+
+// A log axis where the values span more than two decades and are all positive (an SNR from 1 to 1000).
+bool spans_decades(const std::vector<double>& y) {
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (double v : y) {
+    if (!std::isfinite(v)) continue;
+    if (v <= 0) return false;
+    lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  return hi > 0 && hi / lo > 100;
 }
 
 // A PNG ends with the IEND chunk: length 0, "IEND", its CRC AE 42 60 82 (PNG specification, ISO/IEC 15948 §5.6, §11.2.5).
@@ -292,18 +373,58 @@ void plot_sweep(const std::string& png_path, const std::string& title, const std
   const std::string y_labels = joined_labels(series, [](const PlotSeries& s) { return label(s.label, s.unit); });
   draw(
       png_path,
-      [&](std::ostream& out) { write_columns(out, x, series); },
+      [&](std::ostream& out) { write_columns(out, x, series, true); },
       [&](const std::string& terminal) {
-        std::string head = fmt::format("set terminal {} noenhanced size 900,{}\n", terminal, series.size() * 320 + 60);
-        head += fmt::format("panels = {}\narray fixed[{}]\narray low[{}]\narray high[{}]\n", series.size(), series.size(),
-                            series.size(), series.size());
-        for (std::size_t i = 0; i < series.size(); ++i) {
+        const std::size_t n = series.size();
+        std::string head = fmt::format("set terminal {} noenhanced size 900,{}\n", terminal, n * 320 + 60);
+        head += fmt::format("panels = {0}\narray fixed[{0}]\narray low[{0}]\narray high[{0}]\narray logy[{0}]\narray failed[{0}]\n", n);
+        for (std::size_t i = 0; i < n; ++i) {
           const YRange r = y_range(series[i].y);
-          head += fmt::format("fixed[{0}] = {1}; low[{0}] = {2:.17g}; high[{0}] = {3:.17g}\n", i + 1, r.fixed ? 1 : 0, r.low, r.high);
+          head += fmt::format("fixed[{0}] = {1}; low[{0}] = {2:.17g}; high[{0}] = {3:.17g}; logy[{0}] = {4}; failed[{0}] = {5}\n",
+                              i + 1, r.fixed ? 1 : 0, r.low, r.high, !r.fixed && spans_decades(series[i].y) ? 1 : 0,
+                              failed_points(series[i].y));
         }
         return head;
       },
       plot_script, {plain_text(title), plain_text(x_label), y_labels});
+}
+
+void plot_heatmaps(const std::string& png_path, const std::string& title, const std::string& x_label,
+                   const std::string& y_label, const std::vector<double>& x, const std::vector<double>& y,
+                   const std::vector<PlotSeries>& series) {
+  if (series.empty() || x.empty() || y.empty()) throw std::runtime_error("nothing to plot");
+  for (const auto& s : series)
+    if (s.y.size() != x.size() * y.size()) throw std::logic_error("plot_heatmaps: a series is not x × y points");
+  draw(
+      png_path,
+      [&](std::ostream& out) {
+        for (std::size_t i = 0; i < x.size(); ++i) {  // gnuplot's grid: one scan per x, a blank line after each
+          for (std::size_t j = 0; j < y.size(); ++j) {
+            out << fmt::format("{:.17g}\t{:.17g}", x[i], y[j]);
+            for (const auto& s : series) {
+              const double v = s.y[i * y.size() + j];
+              out << '\t' << (std::isfinite(v) ? fmt::format("{:.17g}", v) : "NaN");
+            }
+            out << '\n';
+          }
+          out << '\n';
+        }
+      },
+      [&](const std::string& terminal) {
+        const std::size_t n = series.size();
+        std::string head = fmt::format("set terminal {0} noenhanced size 900,{1}\npanels = {2}\narray failed[{2}]\n"
+                                       "array fixed[{2}]\narray low[{2}]\narray high[{2}]\n",
+                                       terminal, n * 560 + 60, n);
+        for (std::size_t i = 0; i < n; ++i) {
+          const YRange r = y_range(series[i].y);
+          head += fmt::format("failed[{0}] = {1}; fixed[{0}] = {2}; low[{0}] = {3:.17g}; high[{0}] = {4:.17g}\n", i + 1,
+                              failed_points(series[i].y), r.fixed ? 1 : 0, r.low, r.high);
+        }
+        return head;
+      },
+      heatmap_script,
+      {plain_text(title), plain_text(x_label), plain_text(y_label),
+       joined_labels(series, [](const PlotSeries& s) { return label(s.label, s.unit); })});
 }
 
 void plot_curves(const std::string& png_path, const std::string& title, const std::string& x_label,
@@ -338,7 +459,7 @@ void plot_tornado(const std::string& png_path, const std::string& title, const s
       [&](const std::string& terminal) {
         std::size_t height = 60;
         for (const auto& p : panels) height += 90 + 26 * std::max<std::size_t>(p.bars.size(), 1);
-        std::string head = fmt::format("set terminal {} noenhanced size 900,{}\n", terminal, height);
+        std::string head = fmt::format("set terminal {} noenhanced size 1100,{}\n", terminal, height);
         head += fmt::format("panels = {}\narray rows[{}]\n", panels.size(), panels.size());
         for (std::size_t i = 0; i < panels.size(); ++i)
           head += fmt::format("rows[{}] = {}\n", i + 1, std::max<std::size_t>(panels[i].bars.size(), 1));

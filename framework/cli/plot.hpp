@@ -7,7 +7,8 @@
 
 namespace radchain::cli {
 
-// Draws a 1-D sweep with gnuplot (pngcairo, else png): one panel per series against the axis. Throws
+// Draws a 1-D sweep with gnuplot (pngcairo, else png): one panel per series against the axis, logarithmic where it
+// spans more than two decades, its points without a value (a failed solve) marked along the bottom. Throws
 // std::runtime_error when gnuplot is missing or fails.
 struct PlotSeries {
   std::string label;  // "target.magnitude"
@@ -16,6 +17,12 @@ struct PlotSeries {
 };
 void plot_sweep(const std::string& png_path, const std::string& title, const std::string& x_label,
                 const std::vector<double>& x, const std::vector<PlotSeries>& series);
+
+// Draws a 2-D sweep: one heat map per series over x × y with contour lines (series[k].y[i * y.size() + j] at
+// x[i], y[j]); points without a value are grey and counted in the panel's title.
+void plot_heatmaps(const std::string& png_path, const std::string& title, const std::string& x_label,
+                   const std::string& y_label, const std::vector<double>& x, const std::vector<double>& y,
+                   const std::vector<PlotSeries>& series);
 
 // Curves overlaid in one panel with a key (radchain mtf --plot): y from 0 (or 1e-3 on a log axis) to 1.05, and
 // a dashed vertical line at mark_x labelled mark_label (NaN: none).

@@ -209,18 +209,44 @@ TEST(SweepCli, PointPastTheHorizonIsOneLineAndExit2) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-TEST(SweepCli, PlotIsAPng) {
+// The width and height of a PNG (its IHDR chunk), or {0, 0} when the file is not a PNG.
+std::pair<unsigned, unsigned> png_size(const fs::path& png) {
+  const std::string head = read_text(png).substr(0, 24);
+  if (head.size() < 24 || head.substr(0, 8) != std::string("\x89PNG\r\n\x1a\n", 8)) return {0, 0};
+  auto be32 = [&](std::size_t at) {
+    unsigned v = 0;
+    for (std::size_t k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(head[at + k]);
+    return v;
+  };
+  return {be32(16), be32(20)};
+}
+
+// One axis: a panel per series; two: a heat map per series (900 × 560 each, with contours); three: refused.
+// Points without a value (a failed solve) are drawn too: marked on the curve's panel, grey on the map.
+TEST(SweepCli, PlotsCurvesOfOneAxisAndHeatMapsOfTwo) {
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot is not installed";
   Scratch scratch;
-  const fs::path png = scratch / "sweep.png";
+  const fs::path png = scratch / "sweep.png", map = scratch / "map.png";
   const CliResult r = run_cli(scratch, "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:16' --out '" +
                                            (scratch / "sweep.csv").string() + "' --plot '" + png.string() + "'");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(read_text(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
-  const CliResult two_axes = run_cli(scratch, "sweep '" + sbv_file +
-                                                  "' --set 'optics.aperture=15 cm:30 cm:2' --set 'detector.qe=0.2:0.3:2' --plot '" +
-                                                  png.string() + "'");
-  EXPECT_EQ(two_axes.exit_code, 2);
+  EXPECT_EQ(png_size(png), std::make_pair(900u, 380u));
+  // the first aperture's limit is fainter than the bracket allows: a failed solve, exit 1, still plotted
+  const CliResult failed = run_cli(scratch, "sweep '" + sbv_file + "' --set 'optics.aperture=0.001 cm:30 cm:8' "
+                                                "--results target.magnitude,detector.noise_electrons --out /dev/null --plot '" +
+                                                png.string() + "'");
+  EXPECT_EQ(failed.exit_code, 1) << failed.err;
+  EXPECT_EQ(png_size(png), std::make_pair(900u, 700u)) << failed.err;
+  const CliResult two_axes = run_cli(scratch, "sweep '" + sbv_file + "' --set 'optics.aperture=0.001 cm:30 cm:6' "
+                                                  "--set 'detector.integration_time=0.1 s:1 s:5' --results target.magnitude,detector.snr "
+                                                  "--out /dev/null --plot '" + map.string() + "'");
+  EXPECT_EQ(two_axes.exit_code, 1) << two_axes.err;
+  EXPECT_EQ(png_size(map), std::make_pair(900u, 1180u)) << two_axes.err;
+  const CliResult three_axes = run_cli(scratch, "sweep '" + sbv_file + "' --set 'optics.aperture=15 cm:30 cm:2' "
+                                                    "--set 'detector.qe=0.2:0.3:2' --set 'detector.integration_time=1 s:2 s:2' --plot '" +
+                                                    png.string() + "'");
+  EXPECT_EQ(three_axes.exit_code, 2);
+  EXPECT_NE(three_axes.err.find("one axis (curves) or two (heat maps); this sweep has 3 axes"), std::string::npos) << three_axes.err;
 }
 
 // A sweep evaluates only what its columns need, says so with --explain, and gives the same SNR as a full sweep.

@@ -20,21 +20,39 @@ namespace {
 
 constexpr std::size_t tornado_rows = 15;  // the largest |elasticity| per result
 
-// One panel per result: the elasticities ∂r/∂ln x of its largest entries as horizontal bars about zero.
+// One panel per result: the elasticities ∂r/∂ln x of its largest entries as horizontal bars about zero. Inputs the
+// result does not depend on (a zero bar) are counted in the axis label instead of filling rows; an input whose
+// derivative failed keeps a row, labelled so, with no bar: it is not silently left out.
 void plot_budget(const std::string& png_path, const Budget& budget) {
   std::vector<TornadoPanel> panels;
   for (const std::string& result : budget.results) {
     TornadoPanel panel;
     std::string unit;
+    double largest = 0;
+    for (const auto& e : budget.entries)
+      if (e.result == result && e.ok) largest = std::max(largest, std::abs(e.elasticity));
+    std::size_t no_effect = 0, failed = 0;
     for (const auto& e : budget.entries) {
       if (e.result != result) continue;
       unit = e.result_unit;
+      if (!e.ok) {
+        ++failed;
+        if (panel.bars.size() < tornado_rows) panel.bars.emplace_back(e.parameter + ": no derivative (failed)", 0.0);
+        continue;
+      }
+      if (std::abs(e.elasticity) <= 1e-12 * largest) {
+        ++no_effect;
+        continue;
+      }
       // A magnitude's bar is per ln of the flux it stands for (BudgetEntry::per_flux): its label says so.
-      if (e.ok && panel.bars.size() < tornado_rows) panel.bars.emplace_back(e.parameter + (e.per_flux ? " (per ln flux)" : ""), e.elasticity);
+      if (panel.bars.size() < tornado_rows) panel.bars.emplace_back(e.parameter + (e.per_flux ? " (per ln flux)" : ""), e.elasticity);
     }
     std::reverse(panel.bars.begin(), panel.bars.end());  // ranked largest first: the largest bar on top
-    panel.x_label = fmt::format("∂ {} / ∂ ln x{}   (change for +1 % of x: 0.01 × bar)", result,
-                                unit.empty() || unit == "1" ? "" : " [" + unit + "]");
+    std::string notes;
+    if (no_effect) notes += fmt::format("; {} without effect not shown", no_effect);
+    if (failed) notes += fmt::format("; {} failed", failed);
+    panel.x_label = fmt::format("∂ {} / ∂ ln x{}   (change for +1 % of x: 0.01 × bar{})", result,
+                                unit.empty() || unit == "1" ? "" : " [" + unit + "]", notes);
     panels.push_back(std::move(panel));
   }
   plot_tornado(png_path, budget.sensor_name + " — " + budget.sensor_file, panels);

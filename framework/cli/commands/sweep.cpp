@@ -1,4 +1,5 @@
-// `radchain sweep`: a grid of parameter values, solves at every point; optionally a plot of a 1-D sweep.
+// `radchain sweep`: a grid of parameter values, solves at every point; optionally a plot (curves of a 1-D sweep,
+// heat maps of a 2-D one).
 #include "../commands.hpp"
 #include "../common.hpp"
 #include "../plot.hpp"
@@ -36,9 +37,10 @@ int sweep(const SweepCommand& command) {
   options.allow_large = command.allow_large;
   options.shard = shard_of(command.batch);
   const TableFormat format = format_of(command.output, TableFormat::csv);
-  if (!command.plot.empty() && options.axes.size() != 1)
+  if (!command.plot.empty() && options.axes.size() > 2)
     throw InputError(SourceLocation{"--plot", 0, 0}, "", command.plot,
-                     fmt::format("plots are drawn for 1-D sweeps; this sweep has {} axes (plot the CSV instead)", options.axes.size()));
+                     fmt::format("plots are drawn for sweeps of one axis (curves) or two (heat maps); this sweep has {} axes "
+                                 "(plot the CSV instead)", options.axes.size()));
   if (!command.plot.empty() && options.shard.active())
     throw InputError(SourceLocation{"--plot", 0, 0}, "", command.plot, "a shard has part of the sweep: plot the merged output");
   limit_threads(command.batch.threads);
@@ -88,10 +90,19 @@ int sweep(const SweepCommand& command) {
   if (command.explain) std::cerr << "radchain sweep: " << sweep.method() << "\n";
   if (code != 0) std::cerr << "radchain sweep: " << failure << "\n";
   if (!command.plot.empty()) {
-    const SweepAxis& axis = sweep.axes().front();
-    const std::string x_label = axis.unit.empty() ? axis.key : axis.key + " [" + axis.unit + "]";
+    auto axis_label = [](const SweepAxis& axis) { return axis.unit.empty() ? axis.key : axis.key + " [" + axis.unit + "]"; };
+    auto axis_values = [](const SweepAxis& axis) {
+      std::vector<double> v;
+      for (std::size_t i = 0; i < axis.steps; ++i) v.push_back(axis.value(i));
+      return v;
+    };
+    const std::string title = chain.sensor_name + " — " + options.sensor_file;
     try {
-      plot_sweep(command.plot, chain.sensor_name + " — " + options.sensor_file, x_label, x, series);
+      if (sweep.axes().size() == 2)
+        plot_heatmaps(command.plot, title, axis_label(sweep.axes()[0]), axis_label(sweep.axes()[1]),
+                      axis_values(sweep.axes()[0]), axis_values(sweep.axes()[1]), series);
+      else
+        plot_sweep(command.plot, title, axis_label(sweep.axes().front()), x, series);
     } catch (const std::runtime_error& error) {
       if (dynamic_cast<const InputError*>(&error) || dynamic_cast<const WriteError*>(&error)) throw;
       throw InputError(SourceLocation{"--plot", 0, 0}, "", command.plot, error.what());
