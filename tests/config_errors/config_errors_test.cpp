@@ -57,6 +57,7 @@ const Case cases[] = {
     {"plugin_no_entry", test_plugins},
     {"missing_section"},
     {"no_light_section"},
+    {"reflecting_target_without_source"},
     {"unknown_section"},
     {"solve_unknown_criterion"},
     {"table_vary_is_solved"},

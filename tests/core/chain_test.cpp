@@ -4,6 +4,7 @@
 #include "radchain/chain.hpp"
 #include "radchain/constants.hpp"
 #include "radchain/error.hpp"
+#include "radchain/sensor_file.hpp"
 
 #include <gtest/gtest.h>
 
@@ -212,6 +213,29 @@ TEST(Chain, ForwardOnlyLoadingKeepsTheUnknownsValue) {
   EXPECT_NEAR(*solved.run().value("criteria.detection.margin"), 0.0, 1e-12);
   forward.focus({*forward.results().find("detector.snr")});
   EXPECT_TRUE(forward.skips(forward.stages.size() - 1));  // no solve needs criteria.detection any more
+}
+
+}  // namespace
+
+namespace {
+
+// A self-luminous point source (its own flat-f_ν SED) needs no [source]: the Rubin file without one gives the same
+// limit to the last bit. A target lit by a source refuses without one (tests/config_errors, reflecting_target_...).
+TEST(Chain, ASelfLuminousTargetNeedsNoSourceSection) {
+  std::ifstream in(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/rubin-lsst-r-m5.toml");
+  std::string text, line;
+  bool in_source = false;
+  while (std::getline(in, line)) {
+    if (line.starts_with("[")) in_source = line == "[source]";
+    if (!in_source) text += line + "\n";
+  }
+  ASSERT_EQ(text.find("[source]"), std::string::npos);
+  Chain with = load_sensor(std::string(RADCHAIN_SOURCE_DIR) + "/sensors/rubin-lsst-r-m5.toml");
+  Chain without = radchain::load_sensor_text(text, "rubin-without-source.toml");
+  const Report a = with.run(), b = without.run();
+  ASSERT_TRUE(b.all_passed());
+  EXPECT_EQ(a.value("target.magnitude"), b.value("target.magnitude"));
+  EXPECT_EQ(a.value("detector.sky_electrons_per_pixel"), b.value("detector.sky_electrons_per_pixel"));
 }
 
 }  // namespace

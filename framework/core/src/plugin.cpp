@@ -261,11 +261,11 @@ void Context::warn(const InputError& warning) {
 }
 
 void Context::refuse_form(const std::string& what, RadiationForm form) const {
-  // No light at all: the file is geometry-only (sensor_file.cpp: no [source], [atmosphere], [target]).
+  // No light: the file has no [source] (a geometry-only file, or a self-luminous target's that needs none).
   if (form == RadiationForm::none)
     throw InputError({}, fmt::format("{} (plugin \"{}\")", section, plugin), "",
-                     fmt::format("needs light ({}), but the sensor file has no [source] section (nor [atmosphere], "
-                                 "[target]): add them, or use a stage that needs no light",
+                     fmt::format("needs light ({}), but the sensor file has no [source] section to give it: add one "
+                                 "(e.g. [source] plugin = \"sun\"), or use a stage that needs no light",
                                  what));
   throw InputError({}, fmt::format("{} (plugin \"{}\")", section, plugin), "",
                    fmt::format("expected {} but the earlier stages deliver {}", what, to_string(form)));

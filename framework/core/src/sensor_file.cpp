@@ -273,10 +273,13 @@ static Chain build_sensor(ConfigValue root, const std::string& path, const std::
     const ConfigValue* table = root.find(section);
     const bool light = std::find(light_sections.begin(), light_sections.end(), section) != light_sections.end();
     if (!table && light && !has_light) continue;
+    // A target that shines by itself (point_source with its own SED) needs no [source]; a target that reflects
+    // one refuses without it (Context::refuse_form), so leaving it out is never a silent zero.
+    if (!table && section == "source") continue;
     if (!table)
       throw InputError(SourceLocation{path, 0, 0}, "sensor file", "[" + section + "]",
-                       light ? fmt::format("missing section: a file with light has {} (a geometry-only file has none of them)",
-                                           join(light_sections))
+                       light ? std::string("missing section: a file with light has atmosphere, target (and source when "
+                                           "the target reflects it; a geometry-only file has none of them)")
                              : std::string("missing section: every sensor has optics, detector"));
     build_stage(chain, section, *table, path);
     section_lines.emplace_back(section, table->where);
