@@ -3,7 +3,8 @@
 //                magnitude is given in (Bouguer's law in magnitudes; e.g. Ivezić et al. 2019 eq. 6's −k_m (X − 1)
 //                term relative to the zenith)
 //   seeing       FWHM θ(X) = θ_zenith X^0.6 (Kolmogorov turbulence, r0 ∝ X^{-3/5}: Roddier 1981, Prog. Optics 19,
-//                281; Ivezić et al. 2019 §3.2), published for the detector's PSF
+//                281; Ivezić et al. 2019 §3.2), published for the detector's PSF; `seeing_at` says whether the value
+//                given is θ_zenith or θ(X), and both are published
 //   sky          the sky's own radiation, as measured at the site: it is already the light that reaches the
 //                telescope, so it is never extinguished again and never takes the target's spectrum. Given as
 //                  sky_brightness  m AB mag/arcsec², flat in f_ν: L_λ = 10^{-0.4 m} f_ν,AB c/λ² / Ω_arcsec²
@@ -35,7 +36,9 @@ const Schema& schema() {
       number("table_airmass", "1").fallback("1").at_least(1).at_most(40).affects_spectrum()
           .described("airmass at which transmittance_table was computed: τ(λ)^{X/X_table} at airmass X"),
       quantity("seeing", "rad", "0.7 arcsec").above(0)
-          .described("seeing FWHM at the zenith (scaled by X^0.6); default: no seeing"),
+          .described("seeing FWHM, at the zenith (scaled by X^0.6) or along the line of sight as seeing_at says; default: no seeing"),
+      choice("seeing_at", {"zenith", "line_of_sight"}).fallback("zenith")
+          .described("where `seeing` is measured: at the zenith (a site's quoted seeing) or along the line of sight (already at X)"),
       number("sky_brightness", "21.2").at_least(10).at_most(30).scales(Scaling::magnitude)
           .described("sky surface brightness at the site in AB mag/arcsec² (flat in f_ν; in sky_band when sky_table is given); default: no sky"),
       spectrum_file("sky_table", "W m-2 sr-1 m-1", "lsst_darksky_throughputs1.9.csv")
@@ -82,8 +85,13 @@ class Site final : public Stage {
     }
     id_airmass_ = c.declare(vocabulary::atmosphere_airmass, "input X");
     id_transmittance_ = c.declare("transmittance", "1", params_.has("extinction") ? "10^{-0.4 k X} (Bouguer, in magnitudes)" : "1 (the table's τ(λ)^{X/X_table} is spectral)");
-    if (params_.has("seeing"))
-      id_seeing_ = c.declare(vocabulary::atmosphere_seeing_fwhm, "θ_zenith X^0.6 (Roddier 1981)", "arcsec");
+    // Both are reported, whichever was given: a seeing quoted at the zenith is 2.23" along a line of sight at X = 1.2
+    // when 2" was written, and a reader of the report sees which is which.
+    if (params_.has("seeing")) {
+      const bool zenith = params_.text("seeing_at") == "zenith";
+      id_seeing_ = c.declare(vocabulary::atmosphere_seeing_fwhm, zenith ? "θ_zenith X^0.6 (Roddier 1981)" : "input θ (seeing_at = line_of_sight)", "arcsec");
+      id_seeing_zenith_ = c.declare("seeing_zenith_fwhm", "rad", zenith ? "input θ_zenith" : "θ X^-0.6 (Roddier 1981)", "arcsec");
+    }
     prepare_sky(c);
   }
 
@@ -93,7 +101,11 @@ class Site final : public Stage {
     c.light.up_path_scale *= tau;
     c.results.set(id_airmass_, x);
     c.results.set(id_transmittance_, tau);
-    if (id_seeing_) c.results.set(*id_seeing_, physics::seeing_at_airmass(*seeing_, x));
+    if (id_seeing_) {
+      const bool zenith = params_.text("seeing_at") == "zenith";
+      c.results.set(*id_seeing_, zenith ? physics::seeing_at_airmass(*seeing_, x) : *seeing_);
+      c.results.set(*id_seeing_zenith_, zenith ? *seeing_ : *seeing_ / std::pow(x, 0.6));
+    }
     if (table_ && params_.has("sky_brightness")) {  // the table scaled to sky_brightness in sky_band
       c.light.background.scale = std::pow(10.0, -0.4 * *sky_) * ab_in_band_ / table_in_band_;
       c.results.set(*id_sky_, *sky_);
@@ -135,7 +147,7 @@ class Site final : public Stage {
   const Params& params_;
   const double *airmass_, *extinction_, *seeing_, *sky_;
   ResultId id_airmass_{}, id_transmittance_{};
-  std::optional<ResultId> id_seeing_, id_sky_;
+  std::optional<ResultId> id_seeing_, id_seeing_zenith_, id_sky_;
   bool table_ = false;
   double table_in_band_ = 0, ab_in_band_ = 0;  // photon radiances in sky_band (per arcsec²-scaled sr)
 };

@@ -6,6 +6,7 @@
 #include "radchain/physics/zodiacal.hpp"
 #include "radchain/spectrum_csv.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -68,6 +69,32 @@ double trapezoid(const Spectrum& a, const Spectrum& b, W w) {
 // SMTN-002's dark sky in r is the AB magnitude of lsst/throughputs' darksky.dat through hardware_r (SMTN-002 text:
 // "the value for the sky spectrum should be multiplied by only the hardware"; its notebook prints skyMag rounded
 // to 0.01: 21.2 = 21.20). The table's AB mag/arcsec² in the hardware band, from the site, and by hand.
+// Seeing quoted at the zenith or along the line of sight (seeing_at): both are published; the same atmosphere said
+// either way gives the same PSF and limit. At X = 1.5: θ(X) = θ_zenith X^0.6 (Roddier 1981).
+TEST(SiteSeeing, ZenithOrLineOfSightAreOneAtmosphereSaidTwoWays) {
+  const std::string rubin = read(sensors + "rubin-lsst-r-m5.toml");
+  auto with = [&](const std::string& name, const std::string& seeing_lines) {
+    std::string text = rubin;
+    const auto at = text.find("seeing = \"0.83 arcsec\"");
+    text.replace(at, text.find('\n', at) - at, seeing_lines);
+    const auto x = text.find("airmass = 1.0");
+    text.replace(x, std::string("airmass = 1.0").size(), "airmass = 1.5");
+    return run_text(name, text);
+  };
+  const double arcsec = std::numbers::pi / (180.0 * 3600.0), x = 1.5, los = 0.83 * std::pow(x, 0.6);
+  const Report zenith = with("seeing-zenith", "seeing = \"0.83 arcsec\"");
+  const Report sight = with("seeing-los", fmt::format("seeing = \"{:.17g} arcsec\"\nseeing_at = \"line_of_sight\"", los));
+  EXPECT_NEAR(*zenith.value("atmosphere.seeing_fwhm") / arcsec, los, 1e-12);
+  EXPECT_NEAR(*zenith.value("atmosphere.seeing_zenith_fwhm") / arcsec, 0.83, 1e-12);
+  EXPECT_NEAR(*sight.value("atmosphere.seeing_fwhm") / arcsec, los, 1e-12);
+  EXPECT_NEAR(*sight.value("atmosphere.seeing_zenith_fwhm") / arcsec, 0.83, 1e-12);
+  EXPECT_NEAR(*sight.value("detector.psf_fwhm"), *zenith.value("detector.psf_fwhm"), 1e-12 * *zenith.value("detector.psf_fwhm"));
+  EXPECT_NEAR(*sight.value("target.magnitude"), *zenith.value("target.magnitude"), 1e-9);
+  // and the zenith value quoted as if it were the line of sight's is a different, finer PSF: the key matters
+  const Report mistaken = with("seeing-mistaken", "seeing = \"0.83 arcsec\"\nseeing_at = \"line_of_sight\"");
+  EXPECT_GT(*mistaken.value("target.magnitude"), *zenith.value("target.magnitude") + 0.1);
+}
+
 TEST(SkyTable, RubinDarkSkyInRIsSmtn002Value) {
   const Spectrum sky = load_spectrum_csv(spectra + "lsst_darksky_throughputs1.9.csv", "W m-2 sr-1 m-1").spectrum;
   const Spectrum hw = load_spectrum_csv(spectra + "lsst_hardware_r_throughputs1.9.csv", "1").spectrum;
