@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 namespace {
 using namespace radchain::test;
 
@@ -119,6 +121,52 @@ TEST(MergeHostile, AnUnparsableNumericCellIsRefused) {
   std::string failed_point = text;
   failed_point.replace(cell, end - cell, "nan");
   EXPECT_EQ(merge_text(scratch, "nan.shard", failed_point).exit_code, 0);
+}
+
+}  // namespace
+
+// npy_shard_fuzz: a column line with a NUL or a line break in a name, a name twice or bytes that are not UTF-8 was
+// merged; into .npy it made a header numpy.load cannot read (a Python literal ended by the line break or refused
+// for the NUL; a dtype with two fields of one name). radchain writes none of them: such a shard is refused.
+namespace {
+using namespace radchain::test;
+
+TEST(MergeHostile, AColumnLineRadchainDoesNotWriteIsRefused) {
+  Scratch scratch;
+  const std::string header = "# radchain shard 1/1 order=block kind=sweep points=1 format=npy job=0000000000000000 types=nn\n";
+  const std::string rows = "0,1,2\n# end rows=1 exit=0\n";
+  struct Case {
+    std::string columns, expected;
+  };
+  for (const Case& k : std::vector<Case>{{std::string("point,a\0b,c\n", 12), "control character"},
+                                         {"point,\"a\nb\",c\n", "control character"},
+                                         {"point,a,a\n", "names \"a\" twice"},
+                                         {"point,a\xff,c\n", "not UTF-8"}}) {
+    write_text(scratch / "bad.shard", header + k.columns + rows);
+    const CliResult r = run_cli(scratch, "merge '" + (scratch / "bad.shard").string() + "' --out '" + (scratch / "m.npy").string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << k.expected << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find(k.expected), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(scratch / "m.npy")) << k.expected;
+  }
+  write_text(scratch / "good.shard", header + "point,a,b\n" + rows);  // the same shard with names radchain writes
+  EXPECT_EQ(run_cli(scratch, "merge '" + (scratch / "good.shard").string() + "' --out '" + (scratch / "m.npy").string() + "'").exit_code, 0);
+}
+
+// npy_shard_fuzz: a numeric cell with a leading '+' (accepted by the shard reader: a catalogue's signed delta) was
+// NaN in a merged .npy while the CSV merge kept its number.
+TEST(MergeHostile, APlusSignedCellIsItsNumberInNpy) {
+  Scratch scratch;
+  write_text(scratch / "plus.shard", "# radchain shard 1/1 order=block kind=sweep points=1 format=npy job=0000000000000000 types=nn\n"
+                                     "point,a,b\n0,+8.5,2\n# end rows=1 exit=0\n");
+  const CliResult r = run_cli(scratch, "merge '" + (scratch / "plus.shard").string() + "' --out '" + (scratch / "m.npy").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string npy = read_text(scratch / "m.npy");
+  ASSERT_GE(npy.size(), 16u);
+  double values[2];
+  std::memcpy(values, npy.data() + npy.size() - 16, 16);
+  EXPECT_EQ(values[0], 8.5);
+  EXPECT_EQ(values[1], 2.0);
 }
 
 }  // namespace

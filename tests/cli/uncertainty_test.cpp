@@ -85,6 +85,51 @@ TEST(Uncertainty, TruncatedDistributionsMomentsAndRange) {
   EXPECT_FALSE(far.truncated);
 }
 
+// Parameters near the largest doubles (distribution_fuzz): a distribution is either refused in one line or has a
+// finite mean, sd and samples at both ends of sample_uniform's range, and the moments of its closed form.
+// truncated(uniform(0, 1e300), 0, 1e300) made the moments' quadrature square 1e300 and boost throw an
+// evaluation_error (exit 3); lognormal(6, 1e200) squared sd/mean to infinity and sampled NaN.
+TEST(Uncertainty, ExtremeParametersAreRefusedOrFinite) {
+  Chain chain = load_sensor(sbv_file);
+  const double pi = std::numbers::pi;
+  struct Accepted {
+    std::string vary;
+    double mean, sd;  // closed forms
+  };
+  const double half_normal = (1 / std::sqrt(2 * pi)) * (1 - std::exp(-0.5)) / (0.5 * std::erf(1 / std::numbers::sqrt2));
+  for (const Accepted& k : std::vector<Accepted>{
+           {"detector.full_well=truncated(uniform(0 e-, 1e300 e-), 0 e-, 1e300 e-)", 5e299, 1e300 / std::sqrt(12.0)},
+           {"detector.full_well=truncated(uniform(-8e307 e-, 8e307 e-), -8e307 e-, 8e307 e-)", 0, 1.6e308 / std::sqrt(12.0)},
+           {"detector.full_well=triangular(0 e-, 1e200 e-, 1e200 e-)", 2e200 / 3, 1e200 / std::sqrt(18.0)},
+           // a narrow law far from 0: the sd from a² + b² + c² − ab − ac − bc was 0.333 (cancellation), not 1/√6
+           {"detector.full_well=triangular(100000000 e-, 100000001 e-, 100000002 e-)", 100000001, 1 / std::sqrt(6.0)},
+           {"detector.full_well=truncated(normal(0 e-, 1e200 e-), 0 e-, 1e200 e-)", half_normal * 1e200, NAN},
+           {"detector.full_well=truncated(normal(1e5 e-, 1 e-), -1e300 e-, 1e300 e-)", 1e5, 1},
+           {"detector.read_noise=lognormal(6 e-, 1e200 e-)", 6, 1e200},
+       }) {
+    const VariedInput v = parse_vary(chain, k.vary);
+    const Distribution& d = v.distribution;
+    EXPECT_NEAR(d.mean(), k.mean, 1e-9 * std::abs(k.mean) + (k.mean == 0 ? 1e-9 * d.sd() : 0)) << k.vary;
+    if (!std::isnan(k.sd)) {
+      EXPECT_NEAR(d.sd(), k.sd, 1e-9 * k.sd) << k.vary;
+    }
+    for (const double u : {Distribution::least_u, 0.5, Distribution::greatest_u}) EXPECT_TRUE(std::isfinite(d.quantile(u))) << k.vary << " u = " << u;
+  }
+  for (const std::string vary : {"detector.full_well=normal(1e5 e-, 1e308 e-)", "detector.full_well=uniform(-1e308 e-, 1.7e308 e-)",
+                                 "detector.full_well=truncated(uniform(-1.7e308 e-, 1.7e308 e-), 0 e-, 1 e-)",
+                                 "optics.aperture=normal(1e306 km, 1 m)"}) {
+    EXPECT_THROW(
+        try { (void)parse_vary(chain, vary); } catch (const InputError& e) {
+          EXPECT_TRUE(std::string(e.what()).find("beyond the range of a double") != std::string::npos ||
+                      std::string(e.what()).find("not finite in SI units") != std::string::npos)
+              << e.what();
+          throw;
+        },
+        InputError)
+        << vary;
+  }
+}
+
 UncertaintyOptions sbv_options(std::vector<std::string> vary, std::vector<std::string> results, std::size_t samples) {
   UncertaintyOptions o;
   o.sensor_file = sbv_file;

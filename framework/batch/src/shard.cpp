@@ -17,9 +17,11 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 namespace radchain {
 using namespace table_detail;
@@ -70,6 +72,40 @@ std::string job_fingerprint(const std::string& description) {
 // --- merge -------------------------------------------------------------------------------------------------
 
 namespace {
+
+// Whether `text` is well-formed UTF-8 (no overlong forms, surrogates or code points beyond U+10FFFF).
+bool valid_utf8(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    const std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+    if (n == 0 || i + n > text.size()) return false;
+    std::uint32_t code = n == 1 ? c : c & (0x7f >> n);
+    for (std::size_t k = 1; k < n; ++k) {
+      const unsigned char t = static_cast<unsigned char>(text[i + k]);
+      if ((t >> 6) != 0x2) return false;
+      code = (code << 6) | (t & 0x3f);
+    }
+    static constexpr std::uint32_t least[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (code < least[n] || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff)) return false;
+    i += n;
+  }
+  return true;
+}
+
+// The column line as radchain writes it: printable UTF-8 names, each once. What is not could not be merged into
+// every format: an .npy header is read as a Python literal (a line break or NUL ends it, invalid UTF-8 does not
+// decode) and numpy refuses two fields of one name (npy_shard_fuzz).
+std::string column_problem(const std::vector<std::string>& columns) {
+  std::set<std::string_view> seen;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const std::string& name = columns[c];
+    if (std::any_of(name.begin(), name.end(), [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; }))
+      return fmt::format("column {} of the column line has a control character", c + 2);
+    if (!valid_utf8(name)) return fmt::format("column {} of the column line is not UTF-8", c + 2);
+    if (!seen.insert(name).second) return fmt::format("the column line names \"{}\" twice", name);
+  }
+  return "";
+}
 
 struct ShardReader {
   std::string path;
@@ -125,6 +161,7 @@ struct ShardReader {
       throw fail("no column line after the shard header");
     columns.erase(columns.begin());
     if (columns.size() != fields["types"].size()) throw fail("the column line does not match types=");
+    if (const std::string problem = column_problem(columns); !problem.empty()) throw fail(problem);
     // A catalogue table has fixed columns (its summary reads them by position).
     if (fields["kind"] == "catalogue" && columns != catalogue_layout().columns)
       throw fail("the column line is not a catalogue's (" + join(catalogue_layout().columns, ",") + ")");

@@ -176,7 +176,9 @@ void TableWriter::row(std::size_t point, const std::vector<std::string>& cells) 
       std::vector<double> values(cells.size());
       for (std::size_t i = 0; i < cells.size(); ++i) {
         const std::string& cell = cells[i];
-        const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), values[i]);
+        // A leading '+' as the shard reader accepts it (a catalogue's signed delta): from_chars alone made it NaN.
+        const char* first = cell.data() + (!cell.empty() && cell.front() == '+');
+        const auto [end, error] = std::from_chars(first, cell.data() + cell.size(), values[i]);
         if (cell.empty() || error != std::errc() || end != cell.data() + cell.size())
           values[i] = std::numeric_limits<double>::quiet_NaN();
       }

@@ -36,7 +36,9 @@ const double nan = std::numeric_limits<double>::quiet_NaN();
 
 double sample_uniform(std::uint64_t seed, std::uint64_t sample, std::uint64_t input) {
   const std::uint64_t h = splitmix64(splitmix64(splitmix64(seed) ^ sample) ^ (input + 0x632be59bd9b4e019ULL));
-  return (static_cast<double>(h >> 11) + 0.5) * 0x1.0p-53;  // (0, 1), never 0 or 1
+  // (0, 1): the top 53 bits plus ½, times 2⁻⁵³. At 2⁵³ − 1 the sum rounds to 2⁵³ (ties to even), which would be
+  // u = 1 exactly, where Φ⁻¹ is infinite; that one value becomes the largest double below 1.
+  return std::min((static_cast<double>(h >> 11) + 0.5) * 0x1.0p-53, Distribution::greatest_u);
 }
 
 VariedInput parse_vary(Chain& chain, const std::string& text) {

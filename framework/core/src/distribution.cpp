@@ -43,7 +43,9 @@ double Distribution::parent_sd() const {
     case Kind::normal: return b;
     case Kind::uniform: return (b - a) / std::sqrt(12.0);
     case Kind::lognormal: return b;
-    case Kind::triangular: return std::sqrt((a * a + b * b + c * c - a * b - a * c - b * c) / 18);
+    // √((a² + b² + c² − ab − ac − bc)/18) from the widths: the squares of the values overflow beyond 1e154 and
+    // cancel for a narrow law far from 0 (1e8 ± 1: all digits lost).
+    case Kind::triangular: return std::hypot(b - a, c - a, c - b) / 6;
   }
   return nan;
 }
@@ -54,7 +56,9 @@ struct LogNormal {
   double mu, s;
 };
 LogNormal log_normal(double mean, double sd) {
-  const double s2 = std::log1p((sd / mean) * (sd / mean));
+  // ln(1 + r²) as 2 ln r + ln(1 + 1/r²) once r² would overflow (r > 1e154): the law stays finite, not NaN.
+  const double r = sd / mean;
+  const double s2 = r < 1e150 ? std::log1p(r * r) : 2 * std::log(r) + std::log1p(1 / (r * r));
   return {std::log(mean) - s2 / 2, std::sqrt(s2)};
 }
 }  // namespace
@@ -71,8 +75,9 @@ double Distribution::parent_quantile(double u) const {
       return std::exp(l.mu + l.s * standard_normal_quantile(u));
     }
     case Kind::triangular: {  // lo a, mode b, hi c
+      // √(u (c − a)(b − a)) as a product of roots: the product of the widths overflows long before the root does.
       const double f = (b - a) / (c - a);
-      return u < f ? a + std::sqrt(u * (c - a) * (b - a)) : c - std::sqrt((1 - u) * (c - a) * (c - b));
+      return u < f ? a + std::sqrt(u) * std::sqrt(c - a) * std::sqrt(b - a) : c - std::sqrt(1 - u) * std::sqrt(c - a) * std::sqrt(c - b);
     }
   }
   return nan;
@@ -89,7 +94,7 @@ double Distribution::parent_upper_quantile(double q) const {
     }
     case Kind::triangular: {
       const double f = (c - b) / (c - a);  // the upper tail's share
-      return q < f ? c - std::sqrt(q * (c - a) * (c - b)) : a + std::sqrt((1 - q) * (c - a) * (b - a));
+      return q < f ? c - std::sqrt(q) * std::sqrt(c - a) * std::sqrt(c - b) : a + std::sqrt(1 - q) * std::sqrt(c - a) * std::sqrt(b - a);
     }
   }
   return nan;
@@ -107,7 +112,7 @@ double Distribution::cdf(double x) const {
     case Kind::triangular:
       if (x <= a) return 0;
       if (x >= c) return 1;
-      return x <= b ? (x - a) * (x - a) / ((c - a) * (b - a)) : 1 - (c - x) * (c - x) / ((c - a) * (c - b));
+      return x <= b ? (x - a) / (c - a) * ((x - a) / (b - a)) : 1 - (c - x) / (c - a) * ((c - x) / (c - b));
   }
   return nan;
 }
@@ -124,7 +129,7 @@ double Distribution::survival(double x) const {
     case Kind::triangular:
       if (x <= a) return 1;
       if (x >= c) return 0;
-      return x <= b ? 1 - (x - a) * (x - a) / ((c - a) * (b - a)) : (c - x) * (c - x) / ((c - a) * (c - b));
+      return x <= b ? 1 - (x - a) / (c - a) * ((x - a) / (b - a)) : (c - x) / (c - a) * ((c - x) / (c - b));
   }
   return nan;
 }
@@ -155,9 +160,28 @@ double Distribution::truncate(double lower, double upper) {
   // Moments of the truncated law as integrals of its quantile over u ∈ (0, 1): E[x] = ∫Q, var = ∫(Q − E[x])². Q is
   // bounded by [lo, hi] but, for an interval reaching far into a tail, steep at an end (Φ⁻¹ near 0): tanh–sinh
   // quadrature (Takahasi & Mori 1974) converges there, where Gauss–Kronrod stalls at ~1e-9.
-  boost::math::quadrature::tanh_sinh<double> quadrature;
-  truncated_mean = quadrature.integrate([&](double u) { return quantile(u); }, 0.0, 1.0, 1e-14);
-  truncated_sd = std::sqrt(quadrature.integrate([&](double u) { const double d = quantile(u) - truncated_mean; return d * d; }, 0.0, 1.0, 1e-14));
+  const double half_width = hi / 2 - lo / 2;  // finite where hi − lo is not
+  if (std::max(std::abs(lo), std::abs(hi)) < 1e100 && half_width < 1e100 && half_width > 1e-100) {
+    boost::math::quadrature::tanh_sinh<double> quadrature;
+    truncated_mean = quadrature.integrate([&](double u) { return quantile(u); }, 0.0, 1.0, 1e-14);
+    truncated_sd = std::sqrt(quadrature.integrate([&](double u) { const double d = quantile(u) - truncated_mean; return d * d; }, 0.0, 1.0, 1e-14));
+    return probability;
+  }
+  // Bounds beyond 1e100 or closer than 1e-100: in doubles, (Q − E[x])² overflows near the largest values (boost then
+  // throws an evaluation_error) and underflows for the smallest spreads, and scaling by the interval would underflow
+  // a spread of 1 inside ±1e300. The x87 long double's exponent (to 1e±4931) holds all of them.
+  static_assert(std::numeric_limits<long double>::max_exponent >= 16384, "squares of doubles need a wider exponent");
+  boost::math::quadrature::tanh_sinh<long double> quadrature;
+  // u as a double strictly inside (0, 1), as the double quadrature's abscissas are: a long double u within 2⁻⁵⁴ of 1
+  // rounds to 1.0, where the quantile is hi (1e300) instead of the tail's limit.
+  auto q = [&](long double u) {
+    return static_cast<long double>(quantile(std::clamp(static_cast<double>(u), std::numeric_limits<double>::denorm_min(), greatest_u)));
+  };
+  const long double lower_l = lo, upper_l = hi;
+  const long double m = std::clamp(quadrature.integrate(q, 0.0L, 1.0L, 1e-14L), lower_l, upper_l);
+  const long double variance = quadrature.integrate([&](long double u) { const long double d = q(u) - m; return d * d; }, 0.0L, 1.0L, 1e-14L);
+  truncated_mean = static_cast<double>(m);
+  truncated_sd = static_cast<double>(std::min(std::sqrt(variance), static_cast<long double>(half_width)));  // at most half the interval
   return probability;
 }
 
@@ -217,7 +241,10 @@ VariedInput parse_varied_input(Chain& chain, const std::string& key, const std::
     } catch (const std::domain_error&) {
       throw fail(fmt::format("\"{}\": wrong unit, expected {}", text, dimensionless ? std::string("a plain number") : units::dimension_name(spec.si_unit)));
     }
-    return q.number * factor;
+    // A finite number times its unit's factor can still overflow ("1e308 km").
+    const double si = q.number * factor;
+    if (!std::isfinite(si)) throw fail(fmt::format("\"{}\" is not finite in SI units ({})", text, v.unit));
+    return si;
   };
   const std::string expected =
       "expected normal(mean, sd), uniform(lo, hi), lognormal(mean, sd), triangular(lo, mode, hi) or truncated(<one of these>, lo, hi)";
@@ -270,6 +297,11 @@ VariedInput parse_varied_input(Chain& chain, const std::string& key, const std::
         if (!(d.a <= d.b && d.b <= d.c && d.a < d.c)) throw fail("triangular(lo, mode, hi) needs lo <= mode <= hi, lo < hi");
         break;
     }
+    // The width enters every quantile and probability of these two (hi − lo beyond the largest double: NaN).
+    const double width = d.kind == Distribution::Kind::uniform ? d.b - d.a : d.c - d.a;
+    if (d.kind != Distribution::Kind::normal && d.kind != Distribution::Kind::lognormal && !std::isfinite(width)) {
+      throw fail(fmt::format("{}: hi − lo is beyond the range of a double", name));
+    }
     return d;
   };
   std::string name;
@@ -290,6 +322,12 @@ VariedInput parse_varied_input(Chain& chain, const std::string& key, const std::
     v.distribution = parse(spec_text);
   }
   const Distribution& d = v.distribution;
+  // Every sample a finite double (distribution.hpp: the quantile is monotonic, so its ends decide).
+  if (!std::isfinite(d.mean()) || !std::isfinite(d.sd()) || !std::isfinite(d.quantile(Distribution::least_u)) ||
+      !std::isfinite(d.quantile(Distribution::greatest_u)))
+    throw fail(fmt::format("its values reach beyond the range of a double ({:g} {} to {:g} {}, mean {:g}, sd {:g})",
+                           d.quantile(Distribution::least_u), v.unit, d.quantile(Distribution::greatest_u), v.unit,
+                           d.mean(), d.sd()));
   if (!spec.in_range(d.mean()))
     throw fail(fmt::format("its mean {:g} {} is out of range: accepted {}", d.mean(), v.unit, spec.range_text()));
   return v;

@@ -31,6 +31,10 @@ struct Distribution {
   // least_truncated_probability nothing is truncated (`truncated` stays false) and the caller refuses it.
   static constexpr double least_truncated_probability = 1e-6;
   double truncate(double lo, double hi);
+  // The probabilities u the samples of `radchain uncertainty` are drawn at lie in [least_u, greatest_u]
+  // (sample_uniform). parse_varied_input refuses a distribution whose quantile at either end, mean or sd is not a
+  // finite double; the quantile is monotonic, so every sample is then finite.
+  static constexpr double least_u = 0x1.0p-54, greatest_u = 1 - 0x1.0p-53;
 
  private:
   double parent_mean() const;

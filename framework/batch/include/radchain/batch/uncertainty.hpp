@@ -27,7 +27,8 @@ namespace radchain {
 // Parses "key=dist(args)" for a numeric, non-spectral, unsolved parameter of `chain`. Throws InputError (one line).
 VariedInput parse_vary(Chain& chain, const std::string& text);
 
-// Uniform u in (0, 1) for sample `sample`, input `input` (SplitMix64 of the three; 53 bits).
+// Uniform u in [Distribution::least_u, greatest_u] ⊂ (0, 1) for sample `sample`, input `input` (SplitMix64 of the
+// three; 53 bits).
 double sample_uniform(std::uint64_t seed, std::uint64_t sample, std::uint64_t input);
 
 struct UncertaintyOptions {
