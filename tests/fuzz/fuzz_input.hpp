@@ -12,6 +12,7 @@
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace radchain::fuzz {
 
@@ -38,6 +39,24 @@ inline std::string write_scratch(const std::string& name, std::string_view bytes
 
 inline std::string_view as_text(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};
+}
+
+// The input cut into shard files at each line that starts "# radchain shard" (at most 32: the last takes the
+// rest), written to the scratch folder as name_of(k) for k = 0, 1, …; returns their paths.
+template <class NameOf>
+std::vector<std::string> write_shard_files(std::string_view input, NameOf name_of) {
+  const std::string_view header = "# radchain shard";
+  constexpr std::size_t max_files = 32;
+  std::vector<std::string> files;
+  std::size_t begin = 0;
+  while (begin < input.size() && files.size() < max_files) {
+    std::size_t next = input.find(header, begin + 1);
+    while (next != std::string_view::npos && input[next - 1] != '\n') next = input.find(header, next + 1);
+    if (next == std::string_view::npos || files.size() + 1 == max_files) next = input.size();
+    files.push_back(write_scratch(name_of(files.size()), input.substr(begin, next - begin)));
+    begin = next;
+  }
+  return files;
 }
 
 }  // namespace radchain::fuzz

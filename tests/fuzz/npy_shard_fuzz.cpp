@@ -139,17 +139,8 @@ bool npy_job(std::string_view input) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input = radchain::fuzz::as_text(data, size);
-  const std::string_view header = "# radchain shard";
-  constexpr std::size_t max_files = 32;
-  std::vector<std::string> files;
-  std::size_t begin = 0;
-  while (begin < input.size() && files.size() < max_files) {
-    std::size_t next = input.find(header, begin + 1);
-    while (next != std::string_view::npos && input[next - 1] != '\n') next = input.find(header, next + 1);
-    if (next == std::string_view::npos || files.size() + 1 == max_files) next = input.size();
-    files.push_back(radchain::fuzz::write_scratch("part-" + std::to_string(files.size() + 1) + ".npy", input.substr(begin, next - begin)));
-    begin = next;
-  }
+  const std::vector<std::string> files =
+      radchain::fuzz::write_shard_files(input, [](std::size_t k) { return "part-" + std::to_string(k + 1) + ".npy"; });
   try {
     std::ostringstream terminal;  // `radchain merge part-*.npy` without --out
     (void)radchain::merge_shards(files, terminal, {}, false);
