@@ -94,7 +94,7 @@ const Schema& schema() {
           .described("exposure time t of one frame (of one TDI stage for tdi_stages > 1); 0 or absent for a scene seen "
                      "from an orbiting platform: the line time GSD_along / ground speed, a pushbroom's one line per "
                      "ground line"),
-      quantity("gain", "electron-1", "0.25 DN/e-").needed().above(0).described("system gain K in DN/e- (EMVA eq. 3)"),
+      quantity("gain", "electron-1", "0.25 DN/e-").needed().above(0).described("system gain K in DN/e- (EMVA eq. 3), or its reciprocal 1/K in e-/DN (e-/ADU)"),
       quantity("read_noise", "electron", "2.3 e-").needed().at_least(0).formerly("dark_noise")
           .described("read noise: EMVA's temporal dark noise σ_d0 (§4.2: at zero exposure time, read noise included)"),
       quantity("full_well", "electron", "10500 e-").needed().above(0).formerly("saturation_capacity")

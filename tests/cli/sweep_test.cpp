@@ -53,6 +53,19 @@ TEST(SweepAxis, BadRangesAreInputErrors) {
   EXPECT_NO_THROW(parse_sweep_axis(chain, "detector.adc_bits", "8:16:5"));
 }
 
+TEST(SweepAxis, AGainIsSweptInDnPerElectron) {
+  // Steps even in e-/DN would be uneven in K: the reciprocal spelling a file accepts is refused for an axis, with why.
+  Chain chain = load_sensor(source_dir + "/sensors/rubin-lsst-r-m5.toml");
+  try {
+    parse_sweep_axis(chain, "detector.gain", "1 e-/DN:2 e-/DN:3");
+    ADD_FAILURE() << "a sweep of the gain in e-/DN was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("stated in DN/e-"), std::string::npos) << e.what();
+  }
+  const SweepAxis axis = parse_sweep_axis(chain, "detector.gain", "0.5 ADU/e-:1 DN/e-:3");
+  EXPECT_EQ(axis.value_si(1), 0.75);
+}
+
 TEST(Sweep, GridOrderLastAxisFastest) {
   SweepOptions options;
   options.sensor_file = sbv_file;

@@ -281,6 +281,12 @@ TEST(UncertaintyCli, BadInputIsOneLineAndExit2) {
     EXPECT_EQ(count_lines(r.err), 1u) << k.arguments << "\n" << r.err;
     EXPECT_NE(r.err.find(k.expected), std::string::npos) << k.arguments << "\n" << r.err;
   }
+  // A normal law of 1/K is not a normal law of K: a gain's law is stated in DN/e-.
+  const CliResult gain = run_cli(scratch, "uncertainty '" + source_dir + "/sensors/rubin-lsst-r-m5.toml' --results "
+                                          "target.magnitude --vary 'detector.gain=normal(1.6 e-/DN, 0.1 e-/DN)'");
+  EXPECT_EQ(gain.exit_code, 2) << gain.err;
+  EXPECT_EQ(count_lines(gain.err), 1u) << gain.err;
+  EXPECT_NE(gain.err.find("stated in DN/e-"), std::string::npos) << gain.err;
 }
 
 }  // namespace

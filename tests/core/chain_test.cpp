@@ -165,6 +165,22 @@ TEST(Chain, SetOverrideOfTheAperture) {
   EXPECT_NEAR(value(r30, "detector.snr"), 5.0, 1e-9);
 }
 
+TEST(Chain, ASystemGainReadsInDnPerElectronOrItsReciprocal) {
+  // EMVA 1288 states K in DN/e-; astronomers quote 1/K in e-/ADU (SMTN-002: "1.5-1.7 e-/ADU"). 1/1.6 rounds to
+  // 0.625 exactly, so the two spellings must give the same bits everywhere downstream.
+  const std::string rubin = std::string(RADCHAIN_SOURCE_DIR) + "/sensors/rubin-lsst-r-m5.toml";
+  const Report k = load_sensor(rubin, {{"detector.gain", "\"0.625 DN/e-\""}}).run();
+  for (const char* reciprocal : {"\"1.6 e-/DN\"", "\"1.6 e-/ADU\""}) {
+    const Report r = load_sensor(rubin, {{"detector.gain", reciprocal}}).run();
+    EXPECT_EQ(value(r, "detector.system_gain"), 0.625) << reciprocal;
+    EXPECT_EQ(r.solves.at(0).value_si, k.solves.at(0).value_si) << reciprocal;
+  }
+  EXPECT_EQ(value(load_sensor(rubin, {{"detector.gain", "\"2 ADU/e-\""}}).run(), "detector.system_gain"), 2.0);
+  // No reciprocal of zero, and only a gain is read reciprocally.
+  EXPECT_THROW(load_sensor(rubin, {{"detector.gain", "\"0 e-/DN\""}}), InputError);
+  EXPECT_THROW(load_sensor(rubin, {{"detector.integration_time", "\"0.1 Hz\""}}), InputError);
+}
+
 TEST(Chain, SetOverridesAreValidated) {
   EXPECT_THROW(load_sensor(sbv, {{"optics.aperture", "30 kg"}}), InputError);
   EXPECT_THROW(load_sensor(sbv, {{"optics.aperture", "30"}}), InputError);

@@ -67,6 +67,19 @@ TEST(Units, ElectronCountsAndRates) {
   EXPECT_THROW(units::conversion("e-", "1"), std::domain_error);
 }
 
+TEST(Units, ASystemGainAloneReadsAReciprocal) {
+  // ADC counts are plain numbers under either name.
+  EXPECT_EQ(units::conversion("DN/e-", "electron-1").factor, 1.0);
+  EXPECT_EQ(units::conversion("ADU/e-", "electron-1").factor, 1.0);
+  EXPECT_EQ(units::reciprocal_conversion("e-/ADU", "electron-1"), 1.0);
+  EXPECT_EQ(units::reciprocal_conversion("e-/DN", "electron-1"), 1.0);
+  // Not a gain's own unit, not another dimension, not another key's reciprocal.
+  EXPECT_FALSE(units::reciprocal_conversion("DN/e-", "electron-1"));
+  EXPECT_FALSE(units::reciprocal_conversion("e-/s", "electron-1"));
+  EXPECT_FALSE(units::reciprocal_conversion("Hz", "s"));
+  EXPECT_FALSE(units::reciprocal_conversion("", "electron-1"));
+}
+
 TEST(Units, ElementaryChargeIsNotAnElectronCount) {
   // udunits reads "e" as the elementary charge (coulomb): it must never pass for electrons.
   EXPECT_TRUE(units::parses("e"));

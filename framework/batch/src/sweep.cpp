@@ -129,6 +129,10 @@ SweepAxis parse_sweep_axis(Chain& chain, const std::string& key, const std::stri
   } catch (const std::invalid_argument&) {
     throw fail(fmt::format("unknown unit: expected {}", expected));
   } catch (const std::domain_error&) {
+    // Steps even in e-/DN would be uneven in the key's DN/e-.
+    if (units::reciprocal_conversion(axis.unit, axis.si_unit))
+      throw fail("a sweep of a system gain is stated in DN/e- (its steps are even in the unit written; e-/DN would make "
+                 "them uneven in the gain K)");
     throw fail("wrong unit: expected " + expected);
   }
   // The values are a linear ramp, so its ends decide the range; integers are checked on the first 1024 steps and the

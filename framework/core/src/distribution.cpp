@@ -239,6 +239,10 @@ VariedInput parse_varied_input(Chain& chain, const std::string& key, const std::
     } catch (const std::invalid_argument&) {
       throw fail(fmt::format("\"{}\": unknown unit", text));
     } catch (const std::domain_error&) {
+      // A law over 1/K is not the same law over K.
+      if (units::reciprocal_conversion(q.unit, spec.si_unit))
+        throw fail(fmt::format("\"{}\": a distribution of a system gain is stated in DN/e- (a law over e-/DN is another "
+                               "law over its reciprocal)", text));
       throw fail(fmt::format("\"{}\": wrong unit, expected {}", text, dimensionless ? std::string("a plain number") : units::dimension_name(spec.si_unit)));
     }
     // A finite number times its unit's factor can still overflow ("1e308 km").

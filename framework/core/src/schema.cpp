@@ -217,7 +217,14 @@ void assign_one(Params& params, Params::Entry& entry, const ConfigValue& value, 
       } catch (const std::invalid_argument&) {
         throw fail(fmt::format("unknown unit \"{}\": {}", q.unit, spec.expected_text()));
       } catch (const std::domain_error&) {
-        throw fail(spec.expected_text());
+        const auto reciprocal = units::reciprocal_conversion(q.unit, spec.si_unit);
+        if (!reciprocal) throw fail(spec.expected_text());
+        const double given = units::to_si(q, *reciprocal);
+        if (!(given > 0) || !std::isfinite(1.0 / given))
+          throw fail(fmt::format("\"{}\" has no finite reciprocal: {}", value.string_value, spec.expected_text()));
+        entry.number = 1.0 / given;  // e-/DN → DN/e-
+        check_range(entry.number);
+        break;
       }
       entry.number = units::to_si(q, factor);
       check_range(entry.number);

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
 namespace radchain::units {
@@ -38,6 +39,7 @@ struct Registry {
     alias("lp", "1");  // line pairs (cycles) per length are counted as plain reciprocal lengths
     alias("cy", "1");
     alias("DN", "1");  // digital numbers (ADC counts): a system gain K is given in DN/e- (EMVA 1288)
+    alias("ADU", "1");  // analogue-to-digital units: the astronomers' name for the same counts ("1.6 e-/ADU")
   }
   void alias(const char* symbol, const char* target) {
     ut_unit* unit = ut_parse(system, target, UT_ASCII);
@@ -210,11 +212,25 @@ std::string dimension_name(const std::string& si_unit) {
       {"lx", "an illuminance"},
       {"electron", "an electron count"},
       {"electron/s", "an electron rate"},
+      {"electron-1", "a system gain in DN/e- (or its reciprocal in e-/DN)"},
       {"1", "a dimensionless number"},
   };
   auto it = names.find(si_unit);
   if (it != names.end()) return it->second;
   return "a quantity in " + si_unit;
+}
+
+std::optional<double> reciprocal_conversion(const std::string& unit, const std::string& si_unit) {
+  // Only a system gain: EMVA 1288 states K in DN/e-, astronomers the conversion factor 1/K in e-/ADU, and a value in
+  // either reads unambiguously. Elsewhere (a time for a frequency, say) a reciprocal is far more likely a mistake.
+  if (si_unit != "electron-1" || unit.empty()) return std::nullopt;
+  try {
+    return conversion(unit, "electron").factor;
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  } catch (const std::domain_error&) {
+    return std::nullopt;
+  }
 }
 
 ParsedQuantity split_quantity(const std::string& text) {

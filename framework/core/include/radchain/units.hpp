@@ -2,8 +2,10 @@
 // Unit strings -> SI doubles, through udunits2 (Debian libudunits2). udunits reads "e" as the elementary
 // charge and has no "deg", so the registry adds, deliberately:
 //   electron counts:  "e-", "electron(s)" as a new base dimension (so "6 e-" is a count, "18 e-/s" a rate);
-//   "deg" = arc degree, "AU" = astronomical unit, "lp" (line pairs) = 1, so "86 lp/mm" = 86 mm-1.
+//   "deg" = arc degree, "AU" = astronomical unit, "lp" (line pairs) = 1, so "86 lp/mm" = 86 mm-1;
+//   "DN" and "ADU" (ADC counts) = 1, so a system gain reads "0.25 DN/e-" (or, reciprocal, "4 e-/ADU").
 // Angles keep their own dimension (radian) here: a length per steradian is not a length.
+#include <optional>
 #include <string>
 
 namespace radchain::units {
@@ -20,6 +22,10 @@ std::string dimension_of(const std::string& unit);
 // Factor converting values in `unit` to `si_unit`. Throws std::invalid_argument when `unit` does not
 // parse, or std::domain_error when the two have different dimensions.
 Conversion conversion(const std::string& unit, const std::string& si_unit);
+
+// The factor f of a unit that is the reciprocal of `si_unit`'s dimension where that reading is accepted: value_si =
+// 1 / (value × f). Only a system gain (si_unit "electron-1": "1.6 e-/DN" is K = 0.625 DN/e-); nullopt otherwise.
+std::optional<double> reciprocal_conversion(const std::string& unit, const std::string& si_unit);
 
 // true when `unit` parses.
 bool parses(const std::string& unit);
