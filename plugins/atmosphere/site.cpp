@@ -1,7 +1,9 @@
 // Observing conditions at a ground site, for objects above the atmosphere (stars, satellites): only the up path.
 //   extinction   the object's light is dimmed by 10^{-0.4 k X}, or by a table τ(λ)^{X/X_table} (Bouguer-Lambert-Beer): k in mag per airmass in the band the target's
 //                magnitude is given in (Bouguer's law in magnitudes; e.g. Ivezić et al. 2019 eq. 6's −k_m (X − 1)
-//                term relative to the zenith)
+//                term relative to the zenith). Neither given: the site curve practice uses when it has none of its
+//                own, Rubin's fiducial Cerro Pachón atmosphere at X = 1 (lsst/throughputs 1.9 baseline/atmos_10.dat,
+//                300-1150 nm: Rayleigh, ozone, water, aerosols), as a table τ(λ)^X; the report's transmittance row says so
 //   seeing       FWHM θ(X) = θ_zenith X^0.6 (Kolmogorov turbulence, r0 ∝ X^{-3/5}: Roddier 1981, Prog. Optics 19,
 //                281; Ivezić et al. 2019 §3.2), published for the detector's PSF; `seeing_at` says whether the value
 //                given is θ_zenith or θ(X), and both are published
@@ -15,24 +17,32 @@
 //                It is handed on as the background radiance (light.background): the optics image it as an
 //                extended scene (transmittance curve included) and the detector counts it by étendue per pixel.
 //                atmosphere.sky_brightness is the input m, or the table's AB magnitude in sky_band when given.
-// Every condition is explicit: airmass and one of extinction / transmittance_table are required; seeing and sky are optional (absent: none).
+// The airmass is required; extinction defaults to the site curve above; seeing and sky are optional (absent: none).
 #include "radchain/physics/emva1288.hpp"
 #include "radchain/physics/magnitudes.hpp"
 #include "radchain/plugin.hpp"
 
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <string_view>
 
 namespace {
 using namespace radchain;
+
+// The default extinction: lsst/throughputs 1.9 baseline/atmos_10.dat (MODTRAN, Cerro Pachón, X = 1, aerosols), the
+// curve SMTN-002 computes Rubin's depths with, over its whole 300-1150 nm.
+constexpr std::string_view default_site_curve = "lsst_atmos_10_300-1150nm_throughputs1.9.csv";
 
 const Schema& schema() {
   static const Schema s = {
       number("airmass", "1.2").needed().at_least(1).at_most(40).affects_spectrum().described("airmass X of the line of sight"),
       number("extinction", "0.10").at_least(0).at_most(5)
-          .described("extinction coefficient k in mag per airmass, in the target's band (or give transmittance_table)"),
-      spectrum_file("transmittance_table", "1", "lsst_atmos_10_throughputs1.9.csv")
-          .described("spectral transmittance τ(λ) of the atmosphere at table_airmass (instead of extinction)"),
+          .described("extinction coefficient k in mag per airmass, in the target's band (or give transmittance_table; "
+                     "neither: the default site curve)"),
+      spectrum_file("transmittance_table", "1", "lsst_atmos_10_throughputs1.9.csv").fallback(std::string(default_site_curve))
+          .described("spectral transmittance τ(λ) of the atmosphere at table_airmass (instead of extinction); default: "
+                     "Rubin's fiducial Cerro Pachón atmosphere at X = 1, 300-1150 nm"),
       number("table_airmass", "1").fallback("1").at_least(1).at_most(40).affects_spectrum()
           .described("airmass at which transmittance_table was computed: τ(λ)^{X/X_table} at airmass X"),
       quantity("seeing", "rad", "0.7 arcsec").above(0)
@@ -63,9 +73,10 @@ class Site final : public Stage {
   explicit Site(const Params& p)
       : params_(p), airmass_(p.handle("airmass")), extinction_(p.handle("extinction")), seeing_(p.handle("seeing")),
         sky_(p.handle("sky_brightness")) {
-    if (p.has("extinction") == p.has("transmittance_table"))
-      p.reject(p.has("extinction") ? "extinction" : "airmass",
-               "give either extinction (mag per airmass) or transmittance_table (τ(λ) at table_airmass)");
+    if (p.given("extinction") && p.given("transmittance_table"))
+      p.reject("extinction", "give either extinction (mag per airmass) or transmittance_table (τ(λ) at table_airmass), not both");
+    if (p.given("table_airmass") && !p.given("transmittance_table"))
+      p.reject("table_airmass", "is the airmass of a transmittance_table given in the file (the default site curve is at X = 1)");
     if (p.has("sky_band") && !p.has("sky_table"))
       p.reject("sky_band", "is the band of a sky_table (a sky_brightness alone is flat in f_ν, the same in every band)");
     if (p.has("sky_table") && p.has("sky_brightness") && !p.has("sky_band"))
@@ -74,7 +85,7 @@ class Site final : public Stage {
   }
 
   void prepare(Context& c) override {
-    if (params_.has("transmittance_table")) {
+    if (!params_.has("extinction")) {
       // The airmass is spectral here: it changes the table's shape τ^{X/X_table}.
       const Spectrum& table = params_.spectrum("transmittance_table");
       const double power = params_.get("airmass") / params_.get("table_airmass");
@@ -84,7 +95,12 @@ class Site final : public Stage {
       note_table(c.light, params_, "transmittance_table");
     }
     id_airmass_ = c.declare(vocabulary::atmosphere_airmass, "input X");
-    id_transmittance_ = c.declare("transmittance", "1", params_.has("extinction") ? "10^{-0.4 k X} (Bouguer, in magnitudes)" : "1 (the table's τ(λ)^{X/X_table} is spectral)");
+    id_transmittance_ = c.declare("transmittance", "1",
+                                  params_.has("extinction")                ? "10^{-0.4 k X} (Bouguer, in magnitudes)"
+                                  : params_.given("transmittance_table") ? "1 (the table's τ(λ)^{X/X_table} is spectral)"
+                                                                          : "1 (spectral: τ(λ)^X of the default site curve, Rubin's "
+                                                                            "Cerro Pachón atmosphere at X = 1; give extinction or "
+                                                                            "transmittance_table for another site)");
     // Both are reported, whichever was given: a seeing quoted at the zenith is 2.23" along a line of sight at X = 1.2
     // when 2" was written, and a reader of the report sees which is which.
     if (params_.has("seeing")) {
@@ -155,7 +171,7 @@ class Site final : public Stage {
 }  // namespace
 
 RADCHAIN_PLUGIN(Site, {
-    .summary = "ground site: airmass, extinction (mag/airmass), seeing at the zenith × X^0.6, sky in AB mag/arcsec² or as a spectral radiance table",
+    .summary = "ground site: airmass, extinction (mag/airmass, a τ(λ) table, or by default Rubin's Cerro Pachón curve), seeing at the zenith × X^0.6, sky in AB mag/arcsec² or as a spectral radiance table",
     .reference = "Bouguer's law; Roddier 1981 (seeing ∝ X^0.6); Ivezić et al. 2019 ApJ 873, 111 §3.2",
     .schema = schema,
     .publishes = {vocabulary::atmosphere_airmass, vocabulary::atmosphere_seeing_fwhm, vocabulary::atmosphere_sky_brightness},

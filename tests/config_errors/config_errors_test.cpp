@@ -103,6 +103,8 @@ const Case cases[] = {
     {"streak_window_photometry"},
     {"airmass_outside_lut"},
     {"airmass_without_view"},
+    {"site_extinction_and_table"},
+    {"site_table_airmass_without_table"},
     {"view_airmass_given_twice"},
     {"view_airmass_outside_lut"},
     {"sun_below_horizon"},

@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -93,6 +94,35 @@ TEST(SiteSeeing, ZenithOrLineOfSightAreOneAtmosphereSaidTwoWays) {
   // and the zenith value quoted as if it were the line of sight's is a different, finer PSF: the key matters
   const Report mistaken = with("seeing-mistaken", "seeing = \"0.83 arcsec\"\nseeing_at = \"line_of_sight\"");
   EXPECT_GT(*mistaken.value("target.magnitude"), *zenith.value("target.magnitude") + 0.1);
+}
+
+// A site given only its airmass takes the extinction practice uses when a site has no curve of its own: Rubin's
+// fiducial Cerro Pachón atmosphere (lsst/throughputs 1.9 baseline/atmos_10.dat, X = 1) as τ(λ)^X. The same as
+// naming that table, to the bit; the same m5 as the file's own 400-900 nm cut of it; and the report says so.
+TEST(SiteExtinction, TheDefaultIsRubinsCerroPachonCurve) {
+  const std::string rubin = read(sensors + "rubin-lsst-r-m5.toml");
+  auto with = [&](const std::string& name, const std::string& extinction_lines) {
+    std::string text = rubin;
+    const auto at = text.find("transmittance_table = ");
+    const auto end = text.find('\n', text.find("table_airmass = ", at));
+    text.replace(at, end - at, extinction_lines);
+    const auto x = text.find("airmass = 1.0");
+    text.replace(x, std::string("airmass = 1.0").size(), "airmass = 1.3");
+    return run_text(name, text);
+  };
+  const Report by_default = with("extinction-default", "");
+  const Report named = with("extinction-named", "transmittance_table = \"lsst_atmos_10_300-1150nm_throughputs1.9.csv\"");
+  const Report cut = with("extinction-cut", "transmittance_table = \"lsst_atmos_10_throughputs1.9.csv\"\ntable_airmass = 1.0");
+  ASSERT_TRUE(by_default.solves.at(0).converged);
+  EXPECT_EQ(by_default.solves.at(0).value_si, named.solves.at(0).value_si);
+  EXPECT_NEAR(by_default.solves.at(0).value_si, cut.solves.at(0).value_si, 1e-12);
+  const auto row = std::find_if(by_default.results.begin(), by_default.results.end(),
+                                [](const auto& r) { return r.name == "atmosphere.transmittance"; });
+  ASSERT_NE(row, by_default.results.end());
+  EXPECT_NE(row->equation.find("default site curve"), std::string::npos) << row->equation;
+  // and extinction by a coefficient still replaces it: k = 0 is no atmosphere at all
+  const Report clear = with("extinction-zero", "extinction = 0.0");
+  EXPECT_GT(clear.solves.at(0).value_si, by_default.solves.at(0).value_si + 0.1);
 }
 
 TEST(SkyTable, RubinDarkSkyInRIsSmtn002Value) {
