@@ -23,6 +23,7 @@
 #include "radchain/plugin.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <string_view>
@@ -64,8 +65,11 @@ constexpr double arcsec2_sr = (std::numbers::pi / 648000.0) * (std::numbers::pi 
 
 // The AB zero point (f_ν = 3630.8 Jy) as a radiance per arcsec², W m-2 sr-1 m-1, over 0.1-30 µm: a flat-f_ν sky
 // of magnitude 0 per arcsec². Log-spaced, 20,001 points: linear interpolation of 1/λ² errs < 1e-7.
-Spectrum ab_radiance_per_arcsec2() {
-  return physics::ab_reference_spectrum(1e-7, 3e-5, 20001).scaled(1.0 / arcsec2_sr, "W m-2 sr-1 m-1");
+// A constant of nature, built once per process (20,001 exponentials and slopes: it cost more than the rest of a
+// site's spectral phase, which an airmass sweep re-runs at every airmass). Spectra share their immutable data.
+const Spectrum& ab_radiance_per_arcsec2() {
+  static const Spectrum ab = physics::ab_reference_spectrum(1e-7, 3e-5, 20001).scaled(1.0 / arcsec2_sr, "W m-2 sr-1 m-1");
+  return ab;
 }
 
 class Site final : public Stage {
@@ -89,7 +93,14 @@ class Site final : public Stage {
       // The airmass is spectral here: it changes the table's shape τ^{X/X_table}.
       const Spectrum& table = params_.spectrum("transmittance_table");
       const double power = params_.get("airmass") / params_.get("table_airmass");
-      const Spectrum path(table.wavelength_m(), table.value().max(0.0).pow(power), "1", Extrapolation::zero);
+      // τ^p = exp(p ln τ) with ln τ kept per table (an airmass sweep re-runs this at every airmass: Eigen's
+      // vectorised exp instead of a scalar pow per node); 0 where τ = 0 (ln τ = −∞).
+      if (log_table_source_ != table.value().data()) {
+        log_table_source_ = table.value().data();
+        log_table_ = table.value().max(0.0).log();
+      }
+      const Eigen::ArrayXd tau = (log_table_ == -std::numeric_limits<double>::infinity()).select(0.0, (power * log_table_).exp());
+      const Spectrum path(table.wavelength_m(), tau, "1", Extrapolation::zero);
       c.light.up_path_transmittance =
           c.light.up_path_transmittance.empty() ? path : c.light.up_path_transmittance.product(path, "1");
       note_table(c.light, params_, "transmittance_table");
@@ -165,6 +176,8 @@ class Site final : public Stage {
   ResultId id_airmass_{}, id_transmittance_{};
   std::optional<ResultId> id_seeing_, id_seeing_zenith_, id_sky_;
   bool table_ = false;
+  const double* log_table_source_ = nullptr;  // the transmittance table whose ln τ is log_table_
+  Eigen::ArrayXd log_table_;
   double table_in_band_ = 0, ab_in_band_ = 0;  // photon radiances in sky_band (per arcsec²-scaled sr)
 };
 

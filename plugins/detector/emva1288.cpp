@@ -281,6 +281,11 @@ class Emva1288 final : public Stage {
     id_background_ = c.declare("background_electrons", "electron", "n_pix × B per frame", "e-");
     id_shot_noise_ = c.declare("shot_noise", "electron", "√S over M frames", "e-");
     id_prnu_noise_ = c.declare("prnu_noise", "electron", "M s_g S₁/√(n_eff N_tdi)", "e-");
+    // n² = M S₁ + Σ floor + prnu_noise², term by term (EMVA 1288 eqs. 6, 7 over the aperture's pixels).
+    id_floor_sky_ = c.declare(vocabulary::detector_floor_variance_sky, "M n_pix b² N_tdi B");
+    id_floor_dark_ = c.declare(vocabulary::detector_floor_variance_dark, "M n_pix b² N_tdi μ_I t");
+    id_floor_read_ = c.declare(vocabulary::detector_floor_variance_read, "M n_pix b² (σ_d0² + σ_q²/K² + σ_other²)");
+    id_floor_fixed_ = c.declare(vocabulary::detector_floor_variance_fixed_pattern, "M² n_pix b² σ_o²");
     id_ab_zero_ = c.declare("ab_zero_point_electron_rate", "m-2 s-1",
                             "electrons s-1 m-2 of AB magnitude 0 through the band and QE (before optics)", "cm-2 s-1");
     // What `radchain render` draws a frame with (docs/rendering.md): the pixel as read out, its read noise and dark.
@@ -434,6 +439,10 @@ class Emva1288 final : public Stage {
     a.set(id_background_, pixels * sky_binned);
     a.set(id_shot_noise_, std::sqrt(signal));
     a.set(id_prnu_noise_, prnu_amp);
+    a.set(id_floor_sky_, m * pixels * sky_binned);
+    a.set(id_floor_dark_, m * pixels * dark_binned);
+    a.set(id_floor_read_, m * pixels * read_var_binned);
+    a.set(id_floor_fixed_, m * m * pixels * b * b * *dsnu_ * *dsnu_);
     a.set(id_ab_zero_, ab_electrons_per_m2_s_ * qe);  // the scalar η multiplies any qe_curve, as for the target
     if (band_magnitude_) a.set(*id_zero_point_, a.value(*band_magnitude_) + 2.5 * std::log10(image1 / (tdi * t)));
   }
@@ -690,7 +699,7 @@ class Emva1288 final : public Stage {
   ResultId id_image_{}, id_signal_{}, id_noise_{}, id_snr_{}, id_time_{}, id_pixels_{}, id_ensquared_{}, id_neff_{},
       id_fill_{}, id_peak_{}, id_saturation_{}, id_gain_{}, id_tdi_{}, id_sky_{}, id_peak_fraction_{}, id_psf_fwhm_{},
       id_quant_{}, id_dark_{}, id_read_noise_{}, id_background_{}, id_shot_noise_{}, id_prnu_noise_{}, id_ab_zero_{},
-      id_aperture_radius_{};
+      id_aperture_radius_{}, id_floor_sky_{}, id_floor_dark_{}, id_floor_read_{}, id_floor_fixed_{};
 };
 
 }  // namespace
@@ -717,7 +726,9 @@ RADCHAIN_PLUGIN(Emva1288, {
                   vocabulary::detector_dark_rate, vocabulary::detector_read_noise_per_pixel,
                   vocabulary::detector_path_radiance_electrons, vocabulary::detector_binning,
                   vocabulary::detector_exposures, vocabulary::detector_prnu, vocabulary::detector_dsnu,
-                  vocabulary::detector_psf_weighted},
+                  vocabulary::detector_psf_weighted, vocabulary::detector_floor_variance_sky,
+                  vocabulary::detector_floor_variance_dark, vocabulary::detector_floor_variance_read,
+                  vocabulary::detector_floor_variance_fixed_pattern},
     .needs = {if_present(vocabulary::optics_psf_wavelength), if_present(vocabulary::optics_gaussian_fwhm),
               if_present(vocabulary::optics_f_number), if_present(vocabulary::optics_obscuration),
               if_present(vocabulary::optics_focal_length), if_present(vocabulary::optics_aperture),

@@ -131,6 +131,36 @@ TEST(FactoredGrid, ASkyInThePixelLeavesEveryPointToItself) {
       << why_not;
 }
 
+// A sky-limited telescope (Rubin r: site sky and seeing, emva1288's pixel-sampled n_eff) puts every axis into the
+// floor, and the airmass is spectral: no power law holds. The detector's floor terms (sky, dark, read) each separate
+// into per-axis factors, so the grid still factors, and every point agrees with the per-point solve.
+TEST(FactoredGrid, ASkyLimitedTelescopeFactorsByItsNoiseSources) {
+  const std::string rubin = source_dir + "/sensors/rubin-lsst-r-m5.toml";
+  for (const auto& outer : std::vector<std::pair<std::string, std::string>>{
+           {"atmosphere.airmass", "1:2:12"}, {"atmosphere.seeing", "0.5 arcsec:1.5 arcsec:12"}}) {
+    const Sweep sweep(grid_of(rubin, {outer, {"detector.integration_time", "5 s:60 s:15"},
+                                      {"atmosphere.sky_brightness", "19:22:20"}}));
+    SweepWorker worker(sweep);
+    std::string why_not;
+    const auto grid = FactoredGrid::plan(sweep, worker, why_not);
+    ASSERT_TRUE(grid) << outer.first << ": " << why_not;
+    EXPECT_NE(grid->description().find("the noise floor as a sum of per-axis products (detector.floor_variance_sky, "
+                                       "detector.floor_variance_dark, detector.floor_variance_read)"),
+              std::string::npos)
+        << grid->description();
+    EXPECT_EQ(expect_every_point_matches(sweep, *grid, worker), 0u) << outer.first;
+  }
+  // PRNU grows with the signal (s_g² S²/n_eff): no floor, and the plan says so.
+  const Sweep prnu(grid_of(rubin, {{"atmosphere.airmass", "1:2:12"}, {"detector.integration_time", "5 s:60 s:15"},
+                                   {"atmosphere.sky_brightness", "19:22:20"}},
+                           {{"detector.prnu", "0.01"}}));
+  SweepWorker worker(prnu);
+  std::string why_not;
+  EXPECT_FALSE(FactoredGrid::plan(prnu, worker, why_not));
+  EXPECT_NE(why_not.find("atmosphere.airmass is spectral; the detector's floor terms add up to"), std::string::npos) << why_not;
+  EXPECT_NE(why_not.find("such as PRNU, is not a floor"), std::string::npos) << why_not;
+}
+
 TEST(FactoredGrid, GridsThatDoNotFactorSayWhy) {
   auto why = [](SweepOptions options) {
     const Sweep sweep(options);
@@ -231,7 +261,8 @@ TEST(FactoredGrid, RandomGridsAroundTheBundledSensorsAgreeWithThePerPointSolve) 
     // Candidate axes: the numeric parameters of the optics and the detector that a grid would sweep.
     std::vector<std::pair<std::string, double>> candidates;
     for (const char* key : {"optics.aperture", "optics.transmittance", "detector.qe", "detector.integration_time",
-                            "detector.dark_current", "detector.read_noise"}) {
+                            "detector.dark_current", "detector.read_noise", "atmosphere.airmass", "atmosphere.seeing",
+                            "atmosphere.sky_brightness"}) {
       try {
         const ParameterRef p = chain.parameter(key);
         if (p.value() > 0) candidates.emplace_back(key, p.value());
@@ -242,13 +273,19 @@ TEST(FactoredGrid, RandomGridsAroundTheBundledSensorsAgreeWithThePerPointSolve) 
     for (int draw = 0; draw < 4; ++draw) {
       std::shuffle(candidates.begin(), candidates.end(), random);
       const std::size_t n_axes = std::min<std::size_t>(candidates.size(), 2 + draw % 2);
+      // A spectral axis (the airmass) outermost, as a user orders it: the per-point reference then re-runs the
+      // spectral phase once per step, not at every point.
+      std::stable_partition(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(n_axes),
+                            [](const auto& c) { return c.first == "atmosphere.airmass"; });
       std::vector<std::pair<std::string, std::string>> axes;
       for (std::size_t a = 0; a < n_axes; ++a) {
         const auto& [key, value] = candidates[a];
         // A range around the file's value, within the parameter's own range (transmittance and QE at most 1).
         const bool fraction = key == "optics.transmittance" || key == "detector.qe";
-        const double lo = value * (0.5 + 0.4 * uniform(random));
-        const double hi = fraction ? std::min(1.0, value * (1.1 + 0.5 * uniform(random))) : value * (1.1 + 2.0 * uniform(random));
+        double lo = value * (0.5 + 0.4 * uniform(random));
+        double hi = fraction ? std::min(1.0, value * (1.1 + 0.5 * uniform(random))) : value * (1.1 + 2.0 * uniform(random));
+        if (key == "atmosphere.airmass") lo = value, hi = value + 0.2 + 1.5 * uniform(random);  // X ≥ 1
+        if (key == "atmosphere.sky_brightness") lo = value - 0.5 - 2 * uniform(random), hi = value + 0.2 + uniform(random);
         const Params::Entry& spec = chain.slot(key.substr(0, key.find('.'))).params->entry(key.substr(key.find('.') + 1));
         const std::string unit = spec.spec->type == ParamType::quantity && spec.spec->si_unit != "1" ? " " + spec.spec->si_unit : "";
         // Large enough to pay for a plan: 40-70 steps on two axes, 12-28 on three.

@@ -198,6 +198,20 @@ inline constexpr Term detector_binning{"detector.binning", "1", "pixels binned p
 inline constexpr Term detector_exposures{"detector.exposures", "1", "frames co-added M"};
 inline constexpr Term detector_prnu{"detector.prnu", "1", "photo-response non-uniformity s_g (EMVA 1288 §2.4), a fraction"};
 inline constexpr Term detector_dsnu{"detector.dsnu", "electron", "dark-signal non-uniformity σ_o of one native pixel (EMVA 1288 §2.4)"};
+// The noise variance that does not scale with the target's signal, source by source (n² = S + PRNU² + Σ of these,
+// over the photometric aperture and M frames): what a grid factors by (radchain/batch/factored_grid.hpp), and what
+// tells a reader which noise limits the result.
+inline constexpr Term detector_floor_variance_sky{"detector.floor_variance_sky", "electron2",
+                                                  "the sky background's share of the noise variance (Poisson: its electrons)"};
+inline constexpr Term detector_floor_variance_dark{"detector.floor_variance_dark", "electron2",
+                                                   "the dark current's share of the noise variance (Poisson: its electrons)"};
+inline constexpr Term detector_floor_variance_read{"detector.floor_variance_read", "electron2",
+                                                   "read, quantisation and other temporal noise's share of the noise variance"};
+inline constexpr Term detector_floor_variance_fixed_pattern{"detector.floor_variance_fixed_pattern", "electron2",
+                                                            "dark-signal non-uniformity's share of the noise variance"};
+// Every floor term, in the order a factored grid reads them.
+inline constexpr std::array floor_variances{detector_floor_variance_sky, detector_floor_variance_dark,
+                                            detector_floor_variance_read, detector_floor_variance_fixed_pattern};
 // How a point image is counted, for validate: PSF-weighted (the whole image over n_eff pixels) or an aperture
 inline constexpr Term detector_psf_weighted{"detector.psf_weighted", "1",
                                             "1: PSF-weighted photometry (all of the image over n_eff pixels); 0: a window or circle"};
@@ -232,6 +246,9 @@ inline constexpr std::array all{
     target_band_magnitude, atmosphere_airmass, atmosphere_seeing_fwhm, atmosphere_sky_brightness,
     // Moving targets
     detector_target_streak_pixels, detector_star_streak_pixels, detector_trailing_loss, detector_psf_fwhm,
+    // The noise floor, source by source
+    detector_floor_variance_sky, detector_floor_variance_dark, detector_floor_variance_read,
+    detector_floor_variance_fixed_pattern,
 };
 
 // The term a qualified result name is, if any.

@@ -17,6 +17,14 @@
 // axis whose parameter declares a power law: at its ends, the law between them checked at its quarters) and over
 // the sub-grid of J, and a point costs additions:
 //   m(x) = P[x_J] + Σ_a B_a[x_a],  P = m_end + 2.5 lg S_end(x₀) − 2.5 lg S*(c, T),  B_a = 2.5 [lg S_end(.., x_a, ..) − lg S_end(x₀)].
+// A sky in the pixel (or an airmass, a seeing: stages that declare no power law) puts every axis into J. The floor is
+// then still a sum over noise sources, c = Σ_k c_k, and where the detector publishes the sources
+// (vocabulary::floor_variances: sky, dark, read, fixed pattern) each is typically a product of one factor per axis
+// (n_eff(seeing, X) × sky(m_sky) × t for the sky). The plan reads the terms at every point it evaluates, checks
+// that they add up to n² − S there (PRNU, which grows with S, is no floor) and that each separates like lg S_end at
+// every corner, and a point then costs the closed form itself:
+//   c(x) = Σ_k Π_a F_ka[x_a],   m(x) = m_end + 2.5 lg S_end(x₀) + Σ_a B_a[x_a] − 2.5 lg S*(c(x), T).
+// This separation is verified where the chain was evaluated, not proven from declarations as the power laws are.
 // Nothing is taken on trust: the plan also checks that lg S_end separates at those corners, and the whole plan
 // against the per-point solve (SweepWorker::evaluate) at the grid's corners and 64 points spread over it, to 1e-11
 // relative; anything that does not fit leaves every point to the per-point path, which says why
@@ -58,6 +66,11 @@ class FactoredGrid {
   std::vector<std::vector<double>> axis_terms_;    // B_a per step
   std::vector<double> floor_terms_;                // P over the sub-grid of J, first axis outermost
   std::vector<std::size_t> floor_strides_;         // per axis: its stride in floor_terms_ (0 for an axis not in J)
+  // Or the floor as a sum of per-axis products: term t's factor along axis a at [t * axes + a][step] (axis 0's
+  // the term itself along its line, the others' ratios to its value at x₀), with the grid's one T.
+  std::size_t term_count_ = 0;
+  std::vector<std::vector<double>> term_factors_;
+  double threshold_ = 0, base_ = 0;                // T; m_end + 2.5 lg S_end(x₀)
   std::vector<double> column_factors_;             // per result column: SI to its column's unit (display or SI)
   double bright_ = 0, faint_ = 0;                  // the bracket (magnitudes)
   std::string description_;
