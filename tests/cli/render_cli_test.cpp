@@ -75,7 +75,12 @@ TEST(RenderCli, DatasheetImagerRendersAndValidates) {
   EXPECT_EQ(map.exit_code, 2) << map.err;
   EXPECT_NE(map.err.find("input sampling: 1 m is not within a factor 1000 of the output sampling 9000 m"), std::string::npos)
       << map.err;
-  for (const char* name : {"fine.fits", "map.fits"}) EXPECT_FALSE(fs::exists(scratch / name)) << name;
+  // A PSF far wider than the scene (a wavelength in mm) would pad the FFT grid to 24 GB: refused before allocating.
+  const CliResult wide = run_cli(scratch, "render '" + s2 + "' --wavelength '2276 um' --out " + (scratch / "wide.fits").string());
+  EXPECT_EQ(wide.exit_code, 2) << wide.err;
+  EXPECT_EQ(std::count(wide.err.begin(), wide.err.end(), '\n'), 1) << wide.err;
+  EXPECT_NE(wide.err.find("wavelength: the PSF at 2276 um reaches"), std::string::npos) << wide.err;
+  for (const char* name : {"fine.fits", "map.fits", "wide.fits"}) EXPECT_FALSE(fs::exists(scratch / name)) << name;
 }
 
 // A sky (with the dark current) that fills the well saturates every pixel: no frame, exit 2 (1e19 e- wrote a

@@ -248,6 +248,10 @@ double system_mtf(const EarthSceneSetup& s, double nu_x, double nu_y) {
 }
 
 namespace {
+// The largest padded grid the PSF filter allocates beyond 4 times the map's own cells (2^26: 0.5 GB of doubles
+// and half that of their transform).
+constexpr double max_filter_cells = 67108864.0;
+
 int native_size(const EarthSceneSetup& s, int input_px) {
   if (input_px < 1) return 0;
   return static_cast<int>(std::floor((input_px - 1) / sampling_ratio(s) + 1e-9)) + 1;
@@ -256,17 +260,25 @@ int native_size(const EarthSceneSetup& s, int input_px) {
 
 int earth_output_size(const EarthSceneSetup& s, int input_px) { return native_size(s, input_px) / s.binning; }
 
-Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
-  if (reflectance.empty()) throw std::invalid_argument("render: empty reflectance map");
-  const std::int64_t w = reflectance.width, h = reflectance.height;
-  // Mirror padding wide enough for the PSF (detector element + ten Airy radii, on the ground).
+namespace {
+// The PSF's reach on the ground: detector element + ten Airy radii + the budget's blurs.
+double psf_ground_m(const EarthSceneSetup& s) {
   const physics::MtfBudget& b = s.budget;
   const double budget_blur = s.optics == OpticsMtf::budget
                                  ? b.smear_m + b.tdi_mismatch * b.tdi_stages * b.pitch_m + 4.0 * (b.jitter_rms_m + b.diffusion_rms_m) +
                                        (b.fried_parameter_m > 0 ? 4.0 * b.wavelength_m * b.focal_length_m / b.fried_parameter_m : 0.0)
                                  : 0.0;
-  const double psf_ground = (s.element_m + 10.0 * s.wavelength_m * s.f_number + budget_blur) / s.ground_to_focal();
-  const auto margin = static_cast<std::int64_t>(std::ceil(2.0 * psf_ground / s.input_sampling_m)) + 4;
+  return (s.element_m + 10.0 * s.wavelength_m * s.f_number + budget_blur) / s.ground_to_focal();
+}
+
+// Mirror padding wide enough for the PSF, in input pixels (a double: an absurd PSF must not overflow an integer).
+double psf_margin_px(const EarthSceneSetup& s) { return std::ceil(2.0 * psf_ground_m(s) / s.input_sampling_m) + 4; }
+}  // namespace
+
+Image filtered_reflectance(const EarthSceneSetup& s, const Image& reflectance) {
+  if (reflectance.empty()) throw std::invalid_argument("render: empty reflectance map");
+  const std::int64_t w = reflectance.width, h = reflectance.height;
+  const auto margin = static_cast<std::int64_t>(psf_margin_px(s));
   const int nx = detail::fft_friendly_size(static_cast<int>(w + 2 * margin));
   const int ny = detail::fft_friendly_size(static_cast<int>(h + 2 * margin));
   const int half = nx / 2 + 1;
@@ -362,6 +374,16 @@ Image render_earth_scene(const EarthSceneSetup& s, const Image& reflectance, std
            fmt::format("{}×{} pixels of {}×{} binned pixels over {} frames is {:.3g} native reads to draw (at most 4e9): "
                        "render a smaller scene or fewer exposures",
                        wo, ho, s.binning, s.binning, s.exposures, draws));
+  // A PSF far wider than the scene (a wavelength in mm, a unit slip in the budget) would pad the FFT grid to
+  // gigabytes (render_options_fuzz: --wavelength "2276 um" asked for 24 GB) and blur the scene to its mean.
+  const double margin = psf_margin_px(s), w = reflectance.width, h = reflectance.height;
+  const double padded = (w + 2 * margin) * (h + 2 * margin);
+  if (!(padded <= std::max(4.0 * w * h, max_filter_cells)))
+    refuse(s.sensor_file, "wavelength",
+           fmt::format("the PSF at {:.4g} um reaches {:.4g} m on the ground ({:.3g} input pixels): padding the {}×{} map for "
+                       "it needs {:.3g} cells (at most {:.3g}, or 4 times the map's): check the wavelength and the MTF inputs",
+                       s.wavelength_m * 1e6, psf_ground_m(s), margin, reflectance.width, reflectance.height, padded,
+                       max_filter_cells));
   Image image = filtered_reflectance(s, reflectance);
   detail::Random random(seed);
   const double q = s.exposure_per_dn(), top = std::exp2(s.adc_bits) - 1.0;
