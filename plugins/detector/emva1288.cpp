@@ -540,6 +540,10 @@ class Emva1288 final : public Stage {
     id_read_noise_ = c.declare("read_noise", "electron", "√(b² σ_d0²) per frame", "e-");
     id_shot_noise_ = c.declare("shot_noise", "electron", "√S over M frames", "e-");
     id_prnu_noise_ = c.declare("prnu_noise", "electron", "M s_g S₁ / (b √N_tdi)", "e-");
+    // n² = M S₁ + Σ floor + prnu_noise², term by term (EMVA 1288 eqs. 6, 7 for one (binned) pixel).
+    id_floor_dark_ = c.declare(vocabulary::detector_floor_variance_dark, "M b² N_tdi μ_I t");
+    id_floor_read_ = c.declare(vocabulary::detector_floor_variance_read, "M b² (σ_d0² + σ_q²/K² + σ_other²)");
+    id_floor_fixed_ = c.declare(vocabulary::detector_floor_variance_fixed_pattern, "M² b² σ_o²");
     id_reference_noise_ = c.declare("reference_noise_electrons", "electron", "noise at L_ref", "e-");
     id_dynamic_range_ = c.declare("dynamic_range", "1", "L_sat / NEΔL(L→0): saturation over the dark noise floor");
   }
@@ -616,6 +620,9 @@ class Emva1288 final : public Stage {
     a.set(id_read_noise_, b * *dark_noise_);
     a.set(id_shot_noise_, std::sqrt(m * signal1));
     a.set(id_prnu_noise_, m * *prnu_ * signal1 / (b * std::sqrt(tdi)));
+    a.set(id_floor_dark_, m * b * b * dark_native);
+    a.set(id_floor_read_, m * b * b * (*dark_noise_ * *dark_noise_ + quant_var + *other_ * *other_));
+    a.set(id_floor_fixed_, m * m * b * b * *dsnu_ * *dsnu_);
     a.set(id_reference_noise_, reference_noise);
     a.set(id_dynamic_range_, saturation_radiance * m * b * b * k / noise_of(0.0));
   }

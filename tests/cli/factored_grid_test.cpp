@@ -161,6 +161,95 @@ TEST(FactoredGrid, ASkyLimitedTelescopeFactorsByItsNoiseSources) {
   EXPECT_NE(why_not.find("such as PRNU, is not a floor"), std::string::npos) << why_not;
 }
 
+// Every result column of a forward plan against SweepWorker::evaluate (the per-point evaluation), relative.
+void expect_every_forward_point_matches(const Sweep& sweep, const FactoredGrid& grid, SweepWorker& worker,
+                                        double tolerance = 1e-10) {
+  const std::size_t n = sweep.columns(), n_axes = sweep.axes().size();
+  std::vector<double> rows(sweep.points() * n), reference(n);
+  std::vector<char> ok(sweep.points());
+  grid.evaluate(0, sweep.points(), 1, rows.data(), ok.data());
+  for (std::size_t p = 0; p < sweep.points(); ++p) {
+    ASSERT_TRUE(worker.evaluate(p, reference.data())) << worker.failure();
+    EXPECT_TRUE(ok[p]) << "point " << p;
+    for (std::size_t c = 0; c < n; ++c)
+      EXPECT_NEAR(rows[p * n + c], reference[c], c < n_axes ? 0.0 : tolerance * std::abs(reference[c]))
+          << sweep.options().sensor_file << " point " << p << " column " << c;
+  }
+}
+
+// An EO camera's forward SNR (no [[solve]]): the signal (the surface's electrons ρ E cos θ_s τ k t(roll)) and the
+// floor (dark ∝ t, read) are products of per-axis factors, so SNR = S/√(S + c) costs a square root a point; every
+// point and every column against the per-point evaluation. PRNU is no floor: refused with the reason.
+TEST(FactoredGrid, AnEoCamerasForwardSnrFactorsBySignalAndNoiseSources) {
+  const std::string s2 = source_dir + "/sensors/sentinel-2a-msi-b4.toml";
+  SweepOptions options = grid_of(s2, {{"platform.roll", "0 deg:20 deg:10"}, {"target.solar_zenith", "20 deg:70 deg:12"},
+                                      {"target.reflectance", "0.02:0.6:15"}});
+  options.results = {"detector.snr", "detector.signal_electrons", "detector.noise_electrons"};
+  const Sweep sweep(options);
+  SweepWorker worker(sweep);
+  std::string why_not;
+  const auto grid = FactoredGrid::plan(sweep, worker, why_not);
+  ASSERT_TRUE(grid) << why_not;
+  EXPECT_NE(grid->description().find("forward results factored over the grid"), std::string::npos) << grid->description();
+  expect_every_forward_point_matches(sweep, *grid, worker);
+
+  options.overrides = {{"detector.prnu", "0.01"}};
+  const Sweep prnu(options);
+  SweepWorker prnu_worker(prnu);
+  EXPECT_FALSE(FactoredGrid::plan(prnu, prnu_worker, why_not));
+  EXPECT_NE(why_not.find("such as PRNU, is not a floor"), std::string::npos) << why_not;
+}
+
+// The property test for forward plans: random grids around every bundled EO sensor without a [[solve]]; where the
+// plan factors, every point and column agree with the per-point evaluation to 1e-10.
+TEST(FactoredGrid, RandomForwardGridsAroundTheBundledEoSensorsAgreeWithThePerPointEvaluation) {
+  std::mt19937_64 random(20261128);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::size_t factored = 0, tried = 0;
+  for (const auto& entry : fs::directory_iterator(std::string(RADCHAIN_SOURCE_DIR) + "/sensors")) {
+    const std::string file = entry.path().string();
+    Chain chain = load_sensor(file);
+    if (!chain.solves.empty() || !chain.results().find("detector.snr")) continue;
+    std::vector<std::pair<std::string, std::string>> candidates;
+    auto add = [&](const char* key, double lo, double hi, const char* unit) {
+      try {
+        chain.parameter(key);
+        candidates.emplace_back(key, fmt::format("{:.9g}{}:{:.9g}{}", lo, unit, hi, unit));
+      } catch (const std::exception&) {
+      }
+    };
+    add("target.reflectance", 0.02 + 0.1 * uniform(random), 0.3 + 0.6 * uniform(random), "");
+    add("target.solar_zenith", 10 + 20 * uniform(random), 40 + 40 * uniform(random), " deg");
+    add("platform.roll", 0, 5 + 30 * uniform(random), " deg");
+    add("optics.transmittance", 0.3 + 0.2 * uniform(random), 0.6 + 0.3 * uniform(random), "");
+    add("detector.qe", 0.2 + 0.2 * uniform(random), 0.5 + 0.4 * uniform(random), "");
+    if (candidates.size() < 2) continue;
+    for (int draw = 0; draw < 2; ++draw) {
+      std::shuffle(candidates.begin(), candidates.end(), random);
+      const std::size_t n_axes = std::min<std::size_t>(candidates.size(), 2 + draw % 2);
+      std::vector<std::pair<std::string, std::string>> axes;
+      for (std::size_t a = 0; a < n_axes; ++a)
+        axes.emplace_back(candidates[a].first,
+                          candidates[a].second + ":" + std::to_string(n_axes == 2 ? 40 + (draw * 7 + a * 5) % 31 : 12 + (draw * 7 + a * 5) % 17));
+      SweepOptions options = grid_of(file, axes);
+      options.results = {"detector.snr", "detector.noise_electrons"};
+      const Sweep sweep(options);
+      SweepWorker worker(sweep);
+      std::string why_not;
+      ++tried;
+      const auto grid = FactoredGrid::plan(sweep, worker, why_not);
+      if (!grid) {
+        std::cout << "not factored: " << entry.path().filename().string() << ": " << why_not << "\n";
+        continue;
+      }
+      ++factored;
+      expect_every_forward_point_matches(sweep, *grid, worker);
+    }
+  }
+  std::cout << "factored " << factored << " of " << tried << " random forward grids around the bundled EO sensors\n";
+  EXPECT_GT(factored, 0u);
+}
+
 TEST(FactoredGrid, GridsThatDoNotFactorSayWhy) {
   auto why = [](SweepOptions options) {
     const Sweep sweep(options);

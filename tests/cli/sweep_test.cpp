@@ -269,10 +269,11 @@ TEST(Sweep, ExplainNamesTheStagesNoAskedResultNeeds) {
   const std::string grid = "sweep '" + s2 + "' --set 'target.reflectance=0.05:0.6:12' --format csv ";
   const CliResult focused = run_cli(scratch, grid + "--results detector.snr --explain");
   EXPECT_EQ(focused.exit_code, 0) << focused.err;
-  EXPECT_EQ(focused.err, "radchain sweep: per point: no [[solve]]; not evaluated (no asked result or solve needs them): "
-                         "criteria.gsd, criteria.iq\n");
+  EXPECT_EQ(focused.err, "radchain sweep: per point: no [[solve]], and the grid's 12 points are too few for factoring to "
+                         "pay; not evaluated (no asked result or solve needs them): criteria.gsd, criteria.iq\n");
   const CliResult everything = run_cli(scratch, grid + "--results detector.snr,criteria.iq.niirs --explain");
-  EXPECT_EQ(everything.err, "radchain sweep: per point: no [[solve]]; not evaluated (no asked result or solve needs "
+  EXPECT_EQ(everything.err, "radchain sweep: per point: no [[solve]], and a result other than the detector's signal, "
+                            "noise or SNR is read (criteria.iq.niirs); not evaluated (no asked result or solve needs "
                             "them): criteria.gsd\n");
   // The SNR column is the same text either way.
   auto column = [](const std::string& csv, std::size_t index) {

@@ -104,6 +104,7 @@ void fill_run(const Run& r, std::size_t n_axes = N) {
 std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& worker, std::string& why_not) {
   Chain& chain = worker.chain();
   const auto inversion = chain.magnitude_inversion();
+  if (!inversion && chain.solves.empty()) return plan_forward(sweep, worker, why_not);
   if (!inversion) {
     why_not = chain.solves.empty() ? "no [[solve]]"
               : chain.solver == SolverChoice::root
@@ -479,6 +480,207 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
   return grid;
 }
 
+// A sweep with no [[solve]] that reads only the detector's signal, noise or SNR: the signal a sum of per-axis
+// products (the surface's electrons and the path radiance's), the noise floor another (the detector's published
+// floor variances), n = √(S + c), SNR = S/n. The same checks as for a magnitude: the terms add up to n² − S at every
+// point evaluated, each separates at every corner, and the plan against the per-point evaluation at the corners
+// and 64 spread points (1e-11 relative).
+std::optional<FactoredGrid> FactoredGrid::plan_forward(const Sweep& sweep, SweepWorker& worker, std::string& why_not) {
+  Chain& chain = worker.chain();
+  const Results& results = chain.results();
+  const auto snr = results.find(vocabulary::detector_snr.name), signal = results.find(vocabulary::detector_signal_electrons.name),
+             noise = results.find(vocabulary::detector_noise_electrons.name);
+  if (!snr || !signal || !noise) {
+    why_not = "no [[solve]], and the chain has no detector signal, noise and SNR";
+    return std::nullopt;
+  }
+  FactoredGrid grid;
+  grid.forward_ = true;
+  for (const auto& name : sweep.results()) {
+    const int kind = name == vocabulary::detector_snr.name                ? 0
+                     : name == vocabulary::detector_signal_electrons.name ? 1
+                     : name == vocabulary::detector_noise_electrons.name  ? 2
+                                                                           : -1;
+    if (kind < 0) {
+      why_not = "no [[solve]], and a result other than the detector's signal, noise or SNR is read (" + name + ")";
+      return std::nullopt;
+    }
+    grid.result_kinds_.push_back(kind);
+  }
+  // The quantities that separate: the surface's signal, the path radiance's, then the floor's terms.
+  std::vector<ResultId> floor_ids;
+  for (const auto& term : vocabulary::floor_variances)
+    if (const auto id = results.find(term.name)) floor_ids.push_back(*id);
+  if (floor_ids.empty()) {
+    why_not = "no [[solve]], and the detector publishes no noise floor by source";
+    return std::nullopt;
+  }
+  const auto path = results.find(vocabulary::detector_path_radiance_electrons.name);
+  const std::size_t n_signal = path ? 2 : 1, n_quantities = n_signal + floor_ids.size();
+  const std::vector<SweepAxis>& axes = sweep.axes();
+  const std::size_t n_axes = axes.size();
+  const std::size_t corners = n_axes - 1 <= 6 ? std::size_t{1} << (n_axes - 1) : 2;
+  std::size_t line_cost = 0, test_cost = 0;
+  for (const SweepAxis& axis : axes) line_cost += axis.steps, test_cost += corners * test_steps(axis.steps).size();
+  const std::size_t check_cost = std::min<std::size_t>(2 * corners, 64) + spread_checks;
+  if (4 * (line_cost + test_cost + check_cost) > sweep.points()) {
+    why_not = fmt::format("no [[solve]], and the grid's {} points are too few for factoring to pay", sweep.points());
+    return std::nullopt;
+  }
+  std::vector<ParameterRef> refs;
+  for (const SweepAxis& axis : axes) refs.push_back(chain.parameter(axis.key));
+
+  std::size_t evaluations = 0;
+  std::string terms_why;
+  auto at = [&](const std::vector<std::size_t>& step) {
+    for (std::size_t a = 0; a < n_axes; ++a) {
+      const double v = axes[a].value_si(step[a]);
+      if (refs[a].value() != v) chain.set(refs[a], v);
+    }
+    chain.evaluate(Detail::full);
+    ++evaluations;
+    const double s = results.value(*signal), n = results.value(*noise), p = path ? results.value(*path) : 0.0;
+    std::vector<double> q{s - p};
+    if (path) q.push_back(p);
+    double floor = 0;
+    for (ResultId id : floor_ids) q.push_back(results.value(id)), floor += q.back();
+    if (terms_why.empty()) {
+      for (std::size_t k = 0; k < n_quantities; ++k)
+        if (!(q[k] >= 0) || !std::isfinite(q[k])) terms_why = fmt::format("a signal or floor term is {} at a point of the grid", q[k]);
+      if (terms_why.empty() && !(std::abs(floor - (n * n - s)) <= floor_tolerance * n * n))
+        terms_why = fmt::format("the detector's floor terms add up to {:.12g} e-², not n² − S = {:.12g} e-² (a noise that "
+                                "grows with the signal, such as PRNU, is not a floor)", floor, n * n - s);
+    }
+    return q;
+  };
+  // Each quantity along each axis through x₀: line[k * n_axes + a][i].
+  std::vector<std::vector<double>> line(n_quantities * n_axes);
+  std::vector<std::size_t> step(n_axes, 0);
+  try {
+    const std::vector<double> base = at(step);
+    for (std::size_t a = 0; a < n_axes; ++a) {
+      for (std::size_t k = 0; k < n_quantities; ++k) line[k * n_axes + a].assign(axes[a].steps, base[k]);
+      for (std::size_t i = 1; i < axes[a].steps; ++i) {
+        step.assign(n_axes, 0);
+        step[a] = i;
+        const std::vector<double> q = at(step);
+        for (std::size_t k = 0; k < n_quantities; ++k) line[k * n_axes + a][i] = q[k];
+      }
+    }
+    for (std::size_t a = 0; a < n_axes && terms_why.empty(); ++a) {
+      const std::vector<std::size_t> tested = test_steps(axes[a].steps);
+      for (std::size_t corner = 0; corner < corners && terms_why.empty(); ++corner) {
+        for (std::size_t b = 0, bit = 0; b < n_axes; ++b) {
+          if (b == a) continue;
+          const bool high = corners == 2 ? corner == 1 : ((corner >> bit) & 1) != 0;
+          step[b] = high ? axes[b].steps - 1 : 0;
+          ++bit;
+        }
+        std::vector<double> first;
+        for (std::size_t t = 0; t < tested.size() && terms_why.empty(); ++t) {
+          step[a] = tested[t];
+          const std::vector<double> q = at(step);
+          if (t == 0) {
+            first = q;
+            continue;
+          }
+          for (std::size_t k = 0; k < n_quantities && terms_why.empty(); ++k) {
+            const std::vector<double>& l = line[k * n_axes + a];
+            const double lhs = q[k] * l[0], rhs = first[k] * l[tested[t]];
+            if (!(std::abs(lhs - rhs) <= separation_tolerance * std::max(std::abs(lhs), std::abs(rhs))))
+              terms_why = fmt::format("the {} is not a product of per-axis factors ({} at a corner of the grid)",
+                                      k < n_signal ? "signal" : results.info(floor_ids[k - n_signal]).name, axes[a].key);
+          }
+        }
+      }
+    }
+    for (std::size_t k = 0; k < n_quantities && terms_why.empty(); ++k)
+      if (base[k] == 0)
+        for (std::size_t a = 0; a < n_axes; ++a)
+          for (double v : line[k * n_axes + a])
+            if (v != 0 && terms_why.empty())
+              terms_why = fmt::format("a term is 0 at the grid's first point but not along {}", axes[a].key);
+    if (!terms_why.empty()) {
+      why_not = "no [[solve]]; " + terms_why;
+      return std::nullopt;
+    }
+    // Q(x) = Π_a F_a[x_a]: axis 0's factor is the quantity along its line, the others' ratios to its value at x₀.
+    for (std::size_t k = 0; k < n_quantities; ++k) {
+      if (base[k] == 0) continue;  // 0 everywhere (checked above)
+      for (std::size_t a = 0; a < n_axes; ++a) {
+        std::vector<double> factor = line[k * n_axes + a];
+        if (a > 0)
+          for (double& f : factor) f /= base[k];
+        grid.term_factors_.push_back(std::move(factor));
+      }
+      ++grid.term_count_;
+      if (k < n_signal) ++grid.signal_terms_;
+    }
+  } catch (const InputError& error) {
+    why_not = std::string("the chain refuses a point of the grid: ") + error.what();
+    return std::nullopt;
+  }
+  if (grid.signal_terms_ == 0) {
+    why_not = "no [[solve]], and the signal is 0 at the grid's first point";
+    return std::nullopt;
+  }
+  grid.steps_.resize(n_axes);
+  grid.axis_values_.resize(n_axes);
+  grid.axis_terms_.resize(n_axes);
+  grid.floor_strides_.assign(n_axes, 0);
+  for (std::size_t a = 0; a < n_axes; ++a) {
+    grid.steps_[a] = axes[a].steps;
+    grid.axis_terms_[a].assign(axes[a].steps, 0.0);
+    grid.axis_values_[a].resize(axes[a].steps);
+    for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_values_[a][i] = axes[a].value(i);
+    grid.axis_columns_.push_back(grid.axis_values_[a]);
+    if (sweep.options().si_columns)
+      for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_columns_[a][i] = axes[a].value_si(i);
+  }
+  for (const auto& name : sweep.results())
+    grid.column_factors_.push_back(sweep.options().si_columns ? 1.0 : results.info(*results.find(name)).display_factor);
+
+  // The plan against the per-point evaluation: the grid's corners and points spread over it.
+  std::vector<std::size_t> checked;
+  const std::size_t total = sweep.points();
+  for (std::size_t corner = 0; corner < std::min<std::size_t>(corners * 2, 64); ++corner) {
+    std::size_t point = 0;
+    for (std::size_t a = 0; a < n_axes; ++a) point = point * axes[a].steps + (a < 6 && ((corner >> a) & 1) != 0 ? axes[a].steps - 1 : 0);
+    checked.push_back(point);
+  }
+  const std::size_t part = std::max<std::size_t>(1, total / spread_checks);
+  for (std::size_t k = 0; k < spread_checks; ++k) checked.push_back(k * part + (k * 7919) % part);
+  std::sort(checked.begin(), checked.end());
+  checked.erase(std::unique(checked.begin(), checked.end()), checked.end());
+  const std::size_t n_columns = sweep.columns();
+  std::vector<double> row(n_columns), reference(n_columns);
+  std::size_t compared = 0;
+  for (std::size_t point : checked) {
+    if (point >= total) continue;
+    char ok = 0;
+    grid.evaluate(point, 1, 1, row.data(), &ok);
+    bool evaluated = false;
+    try {
+      evaluated = worker.evaluate(point, reference.data());
+    } catch (const InputError& error) {
+      why_not = std::string("the chain refuses a point of the grid: ") + error.what();
+      return std::nullopt;
+    }
+    for (std::size_t c = n_axes; c < n_columns; ++c)
+      if (!ok || !evaluated || !(std::abs(row[c] - reference[c]) <= check_tolerance * std::abs(reference[c]))) {
+        why_not = fmt::format("no [[solve]]; at grid point {} the factored {} {:.12g} differs from the per-point {:.12g}", point,
+                              sweep.results()[c - n_axes], row[c], reference[c]);
+        return std::nullopt;
+      }
+    ++compared;
+  }
+  grid.description_ = fmt::format(
+      "forward results factored over the grid: the signal and the noise floor as sums of per-axis products; {} chain "
+      "evaluations, {} points checked against the per-point evaluation",
+      evaluations, compared);
+  return grid;
+}
+
 void FactoredGrid::evaluate(std::size_t first, std::size_t count, std::size_t stride, double* out, char* ok) const {
   const std::size_t n_axes = steps_.size(), n_results = column_factors_.size(), n_columns = n_axes + n_results;
   const std::size_t last = n_axes - 1;
@@ -505,7 +707,9 @@ void FactoredGrid::evaluate(std::size_t first, std::size_t count, std::size_t st
     const double* inner = axis_terms_[last].data() + i0;
     const double* values = axis_columns_[last].data() + i0;
     double* rows = out + k * n_columns;
-    if (term_count_ > 0) {
+    if (forward_) {
+      fill_forward(rows, ok + k, run, index, outer_values, i0);
+    } else if (term_count_ > 0) {
       // Each term's product over the axes before the last (axis 0's factor carries the term's value at x₀).
       for (std::size_t t = 0; t < term_count_; ++t) {
         double product = 1;
@@ -534,11 +738,46 @@ void FactoredGrid::evaluate(std::size_t first, std::size_t count, std::size_t st
         default: fill_run<0>(r, n_axes);
       }
     }
-    for (std::size_t c = n_results; c-- > 0;)  // the columns' display units (a magnitude's factor is 1); column 0 last
+    for (std::size_t c = n_results; c-- > 0 && !forward_;)  // the columns' display units (a magnitude's factor is 1); column 0 last
       if (c > 0 || column_factors_[c] != 1.0)
         for (std::size_t i = 0; i < run; ++i) rows[i * n_columns + n_axes + c] = rows[i * n_columns + n_axes] * column_factors_[c];
     k += run;
     point += run * stride;
+  }
+}
+
+}  // namespace radchain
+
+namespace radchain {
+
+void FactoredGrid::fill_forward(double* rows, char* ok, std::size_t run, const std::vector<std::size_t>& index,
+                                std::vector<double>& outer_values, std::size_t i0) const {
+  const std::size_t n_axes = steps_.size(), last = n_axes - 1, n_results = column_factors_.size(),
+                    n_columns = n_axes + n_results;
+  // Each quantity's product over the axes before the last, and its factors along the last from the run's first step.
+  double outer[16];
+  const double* along[16];
+  for (std::size_t t = 0; t < term_count_; ++t) {
+    double product = 1;
+    for (std::size_t a = 0; a < last; ++a) product *= term_factors_[t * n_axes + a][index[a]];
+    outer[t] = product;
+    along[t] = term_factors_[t * n_axes + last].data() + i0;
+  }
+  for (std::size_t a = 0; a < last; ++a) outer_values[a] = axis_columns_[a][index[a]];
+  const double* values = axis_columns_[last].data() + i0;
+  for (std::size_t i = 0; i < run; ++i) {
+    double* row = rows + i * n_columns;
+    for (std::size_t a = 0; a < last; ++a) row[a] = outer_values[a];
+    row[last] = values[i];
+    double signal = 0, floor = 0;
+    for (std::size_t t = 0; t < signal_terms_; ++t) signal += outer[t] * along[t][i];
+    for (std::size_t t = signal_terms_; t < term_count_; ++t) floor += outer[t] * along[t][i];
+    const double noise = std::sqrt(signal + floor);  // EMVA 1288 eq. 6: shot noise and the floor
+    for (std::size_t c = 0; c < n_results; ++c) {
+      const double v = result_kinds_[c] == 0 ? signal / noise : result_kinds_[c] == 1 ? signal : noise;
+      row[n_axes + c] = v * column_factors_[c];
+    }
+    ok[i] = noise > 0 && std::isfinite(noise);
   }
 }
 

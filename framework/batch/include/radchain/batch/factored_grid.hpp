@@ -71,6 +71,14 @@ class FactoredGrid {
   std::size_t term_count_ = 0;
   std::vector<std::vector<double>> term_factors_;
   double threshold_ = 0, base_ = 0;                // T; m_end + 2.5 lg S_end(x₀)
+  // Forward results (no [[solve]]): the first signal_terms_ of the terms are the signal's, the rest the floor's;
+  // per result column 0 SNR, 1 signal, 2 noise.
+  bool forward_ = false;
+  std::size_t signal_terms_ = 0;
+  std::vector<int> result_kinds_;
+  static std::optional<FactoredGrid> plan_forward(const Sweep& sweep, SweepWorker& worker, std::string& why_not);
+  void fill_forward(double* rows, char* ok, std::size_t run, const std::vector<std::size_t>& index,
+                    std::vector<double>& outer_values, std::size_t i0) const;
   std::vector<double> column_factors_;             // per result column: SI to its column's unit (display or SI)
   double bright_ = 0, faint_ = 0;                  // the bracket (magnitudes)
   std::string description_;
