@@ -22,7 +22,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <sstream>
+#include <streambuf>
 
 using namespace pybind11::literals;
 
@@ -152,6 +154,27 @@ py::tuple catalogue(const std::vector<std::string>& inputs, const std::vector<st
 
 // --- grid sweeps and merge (radchain.dask): `radchain sweep` and `radchain merge` with their outputs in memory --------
 
+// An output stream into a string reserved once: a 10⁶-point .npy is 32 MB, and an ostringstream growing by
+// doubling copied it several times and faulted in every new page (most of radchain.grid's time over the CLI's).
+class StringSink : public std::streambuf {
+ public:
+  explicit StringSink(std::size_t reserve) { text_.reserve(reserve); }
+  std::string& text() { return text_; }
+
+ protected:
+  int overflow(int c) override {
+    if (c != traits_type::eof()) text_.push_back(static_cast<char>(c));
+    return c;
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    text_.append(s, static_cast<std::size_t>(n));
+    return n;
+  }
+
+ private:
+  std::string text_;
+};
+
 // `radchain sweep path --set k=v … --set axis=from:to:steps … --results … [--no-solve] --format F [--shard k/n]`:
 // the table's bytes (a shard file when sharded), the first failing point's message ("" if none), the exit code,
 // how the points were solved (Sweep::method(), what --explain prints) and each column's unit. si_columns: the
@@ -160,7 +183,7 @@ py::tuple sweep_table(const std::string& path, const std::vector<std::pair<std::
                       const std::vector<std::pair<std::string, std::string>>& axes, const std::vector<std::string>& results,
                       bool no_solve, const std::string& format, const std::string& shard, const std::string& order,
                       bool allow_large, bool si_columns) {
-  std::ostringstream out;
+  std::unique_ptr<StringSink> sink;
   std::string failure, method;
   std::vector<std::string> units;
   int code = 0;
@@ -177,12 +200,17 @@ py::tuple sweep_table(const std::string& path, const std::vector<std::pair<std::
     options.si_columns = si_columns;
     Sweep sweep(options);
     units = sweep.column_units();
-    TableWriter writer(out, parse_table_format(format), sweep.layout(), sweep.points(), options.shard, sweep.job());
+    const TableFormat table_format = parse_table_format(format);
+    // (An .npy is its header and 8 bytes a cell; a text format's size is not known: grown as it comes.)
+    const std::size_t cells = sweep.points() * sweep.columns();
+    sink = std::make_unique<StringSink>(table_format == TableFormat::npy && cells < (std::size_t{1} << 32) ? 8 * cells + 65536 : 0);
+    std::ostream out(sink.get());
+    TableWriter writer(out, table_format, sweep.layout(), sweep.points(), options.shard, sweep.job());
     code = sweep.run(writer, &failure);
     writer.finish(code);
     method = sweep.method();
   }
-  return py::make_tuple(py::bytes(out.str()), failure, code, method, units);
+  return py::make_tuple(py::bytes(sink->text()), failure, code, method, units);
 }
 
 // `radchain merge files… --format F`: the unsharded job's bytes and its exit code.
