@@ -25,6 +25,8 @@
 // every corner, and a point then costs the closed form itself:
 //   c(x) = Σ_k Π_a F_ka[x_a],   m(x) = m_end + 2.5 lg S_end(x₀) + Σ_a B_a[x_a] − 2.5 lg S*(c(x), T).
 // This separation is verified where the chain was evaluated, not proven from declarations as the power laws are.
+// A sweep with no [[solve]] that reads only the detector's SNR, signal or noise factors the same way: the signal a sum
+// of per-axis products (the surface's electrons, the path radiance's), the floor another, n = √(S + c), SNR = S/n.
 // Nothing is taken on trust: the plan also checks that lg S_end separates at those corners, and the whole plan
 // against the per-point solve (SweepWorker::evaluate) at the grid's corners and 64 points spread over it, to 1e-11
 // relative; anything that does not fit leaves every point to the per-point path, which says why
