@@ -101,6 +101,15 @@ TEST(RenderCli, AbsurdFrameRequestsAreBadInput) {
     EXPECT_EQ(r.exit_code, 2) << target << r.err;
     EXPECT_NE(r.err.find("--target: " + std::string(target) + ": expected x,y,magnitude"), std::string::npos) << r.err;
   }
+  // A pixel of 33 zm (a unit slip) made a Gaussian PSF 6e14 pixels wide: refused, not an overflowing stamp.
+  for (const char* pitch : {"33 zm", "2 cm"}) {
+    const CliResult r = run_cli(scratch, "render '" + sbv_file + "' --psf gaussian --psf-fwhm '20 um' --pixel-pitch '" + pitch +
+                                             "' --out " + (scratch / "p.fits").string());
+    EXPECT_EQ(r.exit_code, 2) << pitch << r.err;
+    EXPECT_NE(r.err.find("pixel pitch: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("a detector pixel lies between 0.1 um and 10 mm"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(scratch / "p.fits"));
+  }
 }
 
 // Each bad option value: exit 2, nothing on stdout, exactly this one line on stderr.

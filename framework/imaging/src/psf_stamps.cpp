@@ -36,12 +36,13 @@ int default_stamp_radius(const PsfSpec& spec) {
       return 0;
     case PsfModel::gaussian: {
       const double sigma = spec.fwhm_m / (2.0 * std::sqrt(2.0 * std::log(2.0)));
-      return std::clamp(static_cast<int>(std::ceil(4.0 * sigma / spec.pitch_m + 0.5)), 1, max_radius);
+      // Clamped as a double: a PSF wider than an int counts pixels must not overflow the conversion.
+      return static_cast<int>(std::clamp(std::ceil(4.0 * sigma / spec.pitch_m + 0.5), 1.0, static_cast<double>(max_radius)));
     }
     case PsfModel::airy: {
       const double v = 2.0 / (pi * 1e-3 * (1.0 - spec.obscuration));
       const double radius_m = v * spec.wavelength_m * spec.f_number / pi;
-      return std::clamp(static_cast<int>(std::ceil(radius_m / spec.pitch_m + 0.5)), 2, max_radius);
+      return static_cast<int>(std::clamp(std::ceil(radius_m / spec.pitch_m + 0.5), 2.0, static_cast<double>(max_radius)));
     }
   }
   return 0;

@@ -160,6 +160,10 @@ SpaceFrameSetup space_frame_setup(Chain& chain, const Report& report, const Spac
   else s.psf = PsfModel::pixel;
   if (s.psf != PsfModel::pixel && !(s.pixel_pitch_m > 0))
     refuse(file, "pixel pitch", "a " + to_string(s.psf) + " PSF needs the pixel pitch (detector.pixel_pitch, or the render option)");
+  // Detector pixels lie between a fraction of a micrometre and millimetres; "033 zm" (render_options_fuzz) made a
+  // PSF 6e14 pixels wide.
+  if (s.pixel_pitch_m > 0 && !(s.pixel_pitch_m >= 1e-7 && s.pixel_pitch_m <= 1e-2))
+    refuse(file, "pixel pitch", fmt::format("{:.4g} m: a detector pixel lies between 0.1 um and 10 mm", s.pixel_pitch_m));
   if (s.psf == PsfModel::airy) {
     s.psf_wavelength_m = o.psf_wavelength_m ? *o.psf_wavelength_m : chain_wavelength.value_or(0.0);
     if (!(s.psf_wavelength_m > 0)) refuse(file, "PSF wavelength", "an Airy PSF needs a wavelength (optics.psf_wavelength, or the render option)");
