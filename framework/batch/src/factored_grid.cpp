@@ -44,6 +44,50 @@ std::vector<std::size_t> test_steps(std::size_t steps) {
   return at;
 }
 
+// The other axes at one corner of the grid, axis `a` left as it is: every corner up to 7 axes (`corners` = 2^(n−1)),
+// else the two extreme ones.
+void to_corner(std::vector<std::size_t>& step, std::size_t a, std::size_t corner, std::size_t corners,
+               const std::vector<SweepAxis>& axes) {
+  for (std::size_t b = 0, bit = 0; b < axes.size(); ++b) {
+    if (b == a) continue;
+    const bool high = corners == 2 ? corner == 1 : ((corner >> bit) & 1) != 0;
+    step[b] = high ? axes[b].steps - 1 : 0;
+    ++bit;
+  }
+}
+
+// The points a plan is checked at against the per-point path: the grid's corners (the first six axes' ends), and
+// k/64 of the way through the grid moved by a pseudo-random part of a 64th, so the checks do not line up on an axis.
+// A spectral axis's value is snapped to one of 8 of its steps: each new value re-runs the spectral phase (~0.3 ms
+// for a telescope's 5,000-node tables), and the line along that axis has already been evaluated at every step.
+std::vector<std::size_t> checked_points(const std::vector<SweepAxis>& axes, const std::vector<ParameterRef>& refs,
+                                        std::size_t corners, std::size_t total) {
+  const std::size_t n_axes = axes.size();
+  std::vector<std::size_t> checked;
+  for (std::size_t corner = 0; corner < std::min<std::size_t>(corners * 2, 64); ++corner) {
+    std::size_t point = 0;
+    for (std::size_t a = 0; a < n_axes; ++a)
+      point = point * axes[a].steps + (a < 6 && ((corner >> a) & 1) != 0 ? axes[a].steps - 1 : 0);
+    checked.push_back(point);
+  }
+  const std::size_t part = std::max<std::size_t>(1, total / spread_checks);
+  for (std::size_t k = 0; k < spread_checks; ++k) {
+    std::size_t point = k * part + (k * 7919) % part;
+    if (point >= total) continue;
+    std::vector<std::size_t> index(n_axes);
+    for (std::size_t a = n_axes, p = point; a-- > 0;) index[a] = p % axes[a].steps, p /= axes[a].steps;
+    point = 0;
+    for (std::size_t a = 0; a < n_axes; ++a) {
+      if (refs[a].spectral()) index[a] = ((k % 8) * (axes[a].steps - 1)) / 7;
+      point = point * axes[a].steps + index[a];
+    }
+    checked.push_back(point);
+  }
+  std::sort(checked.begin(), checked.end());
+  checked.erase(std::unique(checked.begin(), checked.end()), checked.end());
+  return checked;
+}
+
 // A run of points along the last axis, the other axes fixed: rows of the axis values and the magnitude.
 struct Run {
   double* rows;
@@ -224,16 +268,7 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
   FactoredGrid grid;
   grid.bright_ = inversion->bright;
   grid.faint_ = inversion->faint;
-  grid.steps_.resize(n_axes);
-  grid.axis_values_.resize(n_axes);
-  for (std::size_t a = 0; a < n_axes; ++a) {
-    grid.steps_[a] = axes[a].steps;
-    grid.axis_values_[a].resize(axes[a].steps);
-    for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_values_[a][i] = axes[a].value(i);
-    grid.axis_columns_.push_back(grid.axis_values_[a]);
-    if (sweep.options().si_columns)
-      for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_columns_[a][i] = axes[a].value_si(i);
-  }
+  grid.set_columns(sweep, chain.results());
   std::vector<std::vector<double>> line(n_axes);  // lg S_end along each axis through x₀
   // Each floor term along each axis through x₀: term_line[k * n_axes + a][i].
   std::vector<std::vector<double>> term_line(n_terms * n_axes);
@@ -309,12 +344,7 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
       if (in_floor[a]) continue;
       const std::vector<std::size_t> tested = test_steps(axes[a].steps);
       for (std::size_t corner = 0; corner < corners && why_not.empty(); ++corner) {
-        for (std::size_t b = 0, bit = 0; b < n_axes; ++b) {
-          if (b == a) continue;
-          const bool high = corners == 2 ? corner == 1 : ((corner >> bit) & 1) != 0;
-          step[b] = high ? axes[b].steps - 1 : 0;
-          ++bit;
-        }
+        to_corner(step, a, corner, corners, axes);
         At first{};
         for (std::size_t t = 0; t < tested.size(); ++t) {
           step[a] = tested[t];
@@ -410,36 +440,10 @@ std::optional<FactoredGrid> FactoredGrid::plan(const Sweep& sweep, SweepWorker& 
     why_not = std::string("the chain refuses a point of the grid: ") + error.what();
     return std::nullopt;
   }
-  for (const auto& name : sweep.results())
-    grid.column_factors_.push_back(sweep.options().si_columns ? 1.0 : chain.results().info(*chain.results().find(name)).display_factor);
 
   // The plan against the per-point solve: the grid's corners and points spread over it.
-  std::vector<std::size_t> checked;
   const std::size_t total = sweep.points();
-  for (std::size_t corner = 0; corner < std::min<std::size_t>(corners * 2, 64); ++corner) {
-    std::size_t point = 0;
-    for (std::size_t a = 0; a < n_axes; ++a)  // (64 corners at most: the first six axes' ends)
-      point = point * axes[a].steps + (a < 6 && ((corner >> a) & 1) != 0 ? axes[a].steps - 1 : 0);
-    checked.push_back(point);
-  }
-  // k/64 of the way through the grid, moved by a pseudo-random part of a 64th, so the checks do not line up on an axis.
-  // A spectral axis's value is snapped to one of 8 of its steps: each new value re-runs the spectral phase (~0.3 ms
-  // for a telescope's 5,000-node tables), and the line along that axis has already been evaluated at every step.
-  const std::size_t part = std::max<std::size_t>(1, total / spread_checks);
-  for (std::size_t k = 0; k < spread_checks; ++k) {
-    std::size_t point = k * part + (k * 7919) % part;
-    if (point >= total) continue;
-    std::vector<std::size_t> index(n_axes);
-    for (std::size_t a = n_axes, p = point; a-- > 0;) index[a] = p % axes[a].steps, p /= axes[a].steps;
-    point = 0;
-    for (std::size_t a = 0; a < n_axes; ++a) {
-      if (refs[a].spectral()) index[a] = ((k % 8) * (axes[a].steps - 1)) / 7;
-      point = point * axes[a].steps + index[a];
-    }
-    checked.push_back(point);
-  }
-  std::sort(checked.begin(), checked.end());
-  checked.erase(std::unique(checked.begin(), checked.end()), checked.end());
+  const std::vector<std::size_t> checked = checked_points(axes, refs, corners, total);
   const std::size_t n_columns = sweep.columns();
   std::vector<double> row(n_columns), reference(n_columns);
   std::size_t compared = 0;
@@ -570,12 +574,7 @@ std::optional<FactoredGrid> FactoredGrid::plan_forward(const Sweep& sweep, Sweep
     for (std::size_t a = 0; a < n_axes && terms_why.empty(); ++a) {
       const std::vector<std::size_t> tested = test_steps(axes[a].steps);
       for (std::size_t corner = 0; corner < corners && terms_why.empty(); ++corner) {
-        for (std::size_t b = 0, bit = 0; b < n_axes; ++b) {
-          if (b == a) continue;
-          const bool high = corners == 2 ? corner == 1 : ((corner >> bit) & 1) != 0;
-          step[b] = high ? axes[b].steps - 1 : 0;
-          ++bit;
-        }
+        to_corner(step, a, corner, corners, axes);
         std::vector<double> first;
         for (std::size_t t = 0; t < tested.size() && terms_why.empty(); ++t) {
           step[a] = tested[t];
@@ -624,34 +623,14 @@ std::optional<FactoredGrid> FactoredGrid::plan_forward(const Sweep& sweep, Sweep
     why_not = "no [[solve]], and the signal is 0 at the grid's first point";
     return std::nullopt;
   }
-  grid.steps_.resize(n_axes);
-  grid.axis_values_.resize(n_axes);
+  grid.set_columns(sweep, chain.results());
   grid.axis_terms_.resize(n_axes);
   grid.floor_strides_.assign(n_axes, 0);
-  for (std::size_t a = 0; a < n_axes; ++a) {
-    grid.steps_[a] = axes[a].steps;
-    grid.axis_terms_[a].assign(axes[a].steps, 0.0);
-    grid.axis_values_[a].resize(axes[a].steps);
-    for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_values_[a][i] = axes[a].value(i);
-    grid.axis_columns_.push_back(grid.axis_values_[a]);
-    if (sweep.options().si_columns)
-      for (std::size_t i = 0; i < axes[a].steps; ++i) grid.axis_columns_[a][i] = axes[a].value_si(i);
-  }
-  for (const auto& name : sweep.results())
-    grid.column_factors_.push_back(sweep.options().si_columns ? 1.0 : results.info(*results.find(name)).display_factor);
+  for (std::size_t a = 0; a < n_axes; ++a) grid.axis_terms_[a].assign(axes[a].steps, 0.0);
 
   // The plan against the per-point evaluation: the grid's corners and points spread over it.
-  std::vector<std::size_t> checked;
   const std::size_t total = sweep.points();
-  for (std::size_t corner = 0; corner < std::min<std::size_t>(corners * 2, 64); ++corner) {
-    std::size_t point = 0;
-    for (std::size_t a = 0; a < n_axes; ++a) point = point * axes[a].steps + (a < 6 && ((corner >> a) & 1) != 0 ? axes[a].steps - 1 : 0);
-    checked.push_back(point);
-  }
-  const std::size_t part = std::max<std::size_t>(1, total / spread_checks);
-  for (std::size_t k = 0; k < spread_checks; ++k) checked.push_back(k * part + (k * 7919) % part);
-  std::sort(checked.begin(), checked.end());
-  checked.erase(std::unique(checked.begin(), checked.end()), checked.end());
+  const std::vector<std::size_t> checked = checked_points(axes, refs, corners, total);
   const std::size_t n_columns = sweep.columns();
   std::vector<double> row(n_columns), reference(n_columns);
   std::size_t compared = 0;
@@ -778,6 +757,28 @@ void FactoredGrid::fill_forward(double* rows, char* ok, std::size_t run, const s
       row[n_axes + c] = v * column_factors_[c];
     }
     ok[i] = noise > 0 && std::isfinite(noise);
+  }
+}
+
+}  // namespace radchain
+
+namespace radchain {
+
+void FactoredGrid::set_columns(const Sweep& sweep, const Results& results) {
+  const std::vector<SweepAxis>& axes = sweep.axes();
+  column_factors_.clear();
+  for (const auto& name : sweep.results())
+    column_factors_.push_back(sweep.options().si_columns ? 1.0 : results.info(*results.find(name)).display_factor);
+  steps_.resize(axes.size());
+  axis_values_.resize(axes.size());
+  axis_columns_.clear();
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    steps_[a] = axes[a].steps;
+    axis_values_[a].resize(axes[a].steps);
+    for (std::size_t i = 0; i < axes[a].steps; ++i) axis_values_[a][i] = axes[a].value(i);
+    axis_columns_.push_back(axis_values_[a]);
+    if (sweep.options().si_columns)
+      for (std::size_t i = 0; i < axes[a].steps; ++i) axis_columns_[a][i] = axes[a].value_si(i);
   }
 }
 

@@ -78,6 +78,8 @@ class FactoredGrid {
   bool forward_ = false;
   std::size_t signal_terms_ = 0;
   std::vector<int> result_kinds_;
+  // steps_, axis_values_, axis_columns_ and column_factors_ (SI to each result column's unit) of `sweep`.
+  void set_columns(const Sweep& sweep, const Results& results);
   static std::optional<FactoredGrid> plan_forward(const Sweep& sweep, SweepWorker& worker, std::string& why_not);
   void fill_forward(double* rows, char* ok, std::size_t run, const std::vector<std::size_t>& index,
                     std::vector<double>& outer_values, std::size_t i0) const;
